@@ -1,0 +1,21 @@
+# Compile options every target of ours gets through the physics_options interface.
+# Determinism: no -ffast-math, and -ffp-contract=off so that no build type fuses
+# a*b+c into an FMA that rounds differently (same scene, same hash, every build).
+add_library(physics_options INTERFACE)
+target_compile_options(physics_options INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
+  -Wnon-virtual-dtor -Wold-style-cast -Woverloaded-virtual -Wnull-dereference
+  -Wdouble-promotion -Wformat=2 -Wimplicit-fallthrough
+  -ffp-contract=off -fno-fast-math)
+if(PHYSICS_WARNINGS_AS_ERRORS)
+  target_compile_options(physics_options INTERFACE -Werror)
+endif()
+if(PHYSICS_SANITIZE)
+  target_compile_options(physics_options INTERFACE
+    -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
+  target_link_options(physics_options INTERFACE -fsanitize=address,undefined)
+endif()
+if(PHYSICS_TSAN)
+  target_compile_options(physics_options INTERFACE -fsanitize=thread -fno-omit-frame-pointer)
+  target_link_options(physics_options INTERFACE -fsanitize=thread)
+endif()

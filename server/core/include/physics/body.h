@@ -1,0 +1,78 @@
+#pragma once
+// What a body is made from (BodyDef, with documented defaults) and how it is named
+// (BodyId: an index plus a generation, so a stale id is detected, not misused).
+#include <cstdint>
+#include <string_view>
+
+#include "physics/vec2.h"
+
+namespace phys {
+
+enum class Shape : std::uint8_t { Circle, Box };
+enum class Motion : std::uint8_t { Static, Dynamic };
+
+struct BodyDef {
+  Shape shape = Shape::Box;
+  Motion motion = Motion::Dynamic;
+  Vec2 position{};
+  Vec2 velocity{};
+  // The input a client sets; it holds until it is set again.
+  Vec2 acceleration{};
+  double radius = 0.5;              // circles only
+  Vec2 half_extents{0.5, 0.5};      // boxes only
+  double mass = 1.0;                // dynamic only; static bodies have infinite mass
+  double restitution = 0.0;         // 0 stops, 1 keeps the normal speed
+  Vec2 friction{};                  // per axis, the velocity decay rate in 1/s
+};
+
+// Why a BodyDef was refused. Every value names the field at fault.
+enum class BodyDefError : std::uint8_t {
+  None,
+  NonFinitePosition,
+  NonFiniteVelocity,
+  NonFiniteAcceleration,
+  BadRadius,           // not finite, or <= 0
+  BadHalfExtents,      // not finite, or <= 0
+  BadMass,             // dynamic body whose mass is not finite or <= 0
+  BadRestitution,      // not finite, < 0 or > 1
+  BadFriction,         // not finite, or < 0
+  OutOfBounds,         // outside the world's bounds, when it has bounds
+  TooLarge,            // larger than the world's size limit
+  TooManyBodies,       // the world is full
+};
+
+std::string_view describe(BodyDefError error);
+
+struct BodyId {
+  std::uint32_t index = UINT32_MAX;
+  std::uint32_t generation = 0;
+
+  static constexpr BodyId invalid() { return {}; }
+  constexpr bool is_valid() const { return index != UINT32_MAX; }
+  constexpr bool operator==(const BodyId&) const = default;
+  // Packs into 64 bits so that an id can travel in a message as it is.
+  constexpr std::uint64_t packed() const {
+    return (static_cast<std::uint64_t>(generation) << 32) | index;
+  }
+  static constexpr BodyId from_packed(std::uint64_t bits) {
+    return {static_cast<std::uint32_t>(bits), static_cast<std::uint32_t>(bits >> 32)};
+  }
+};
+
+// A read-only view of one body, as the world holds it after the last step.
+struct BodyState {
+  BodyId id;
+  Shape shape = Shape::Box;
+  Motion motion = Motion::Dynamic;
+  Vec2 position{};
+  Vec2 velocity{};
+  Vec2 acceleration{};
+  double radius = 0.0;
+  Vec2 half_extents{};
+  double mass = 0.0;  // 0 for static bodies (infinite mass)
+  double restitution = 0.0;
+  Vec2 friction{};
+  bool awake = true;
+};
+
+}  // namespace phys

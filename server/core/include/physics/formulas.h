@@ -1,0 +1,62 @@
+#pragma once
+// The lecture's formulas, one function each, so that tests check them against
+// hand-computed values and the world uses exactly these.
+#include "physics/settings.h"
+#include "physics/vec2.h"
+
+namespace phys {
+
+// Linear interpolation: (1 - t) * v0 + t * v1.
+constexpr double lerp(double v0, double v1, double t) { return (1.0 - t) * v0 + t * v1; }
+
+// The lecture's friction, v = lerp(v, 0, dt*k), overshoots once dt*k > 1 and
+// diverges past 2. It is the first-order step of dv/dt = -k*v, whose exact
+// solution over dt is v*exp(-k*dt): the same meaning (decay toward zero at rate k),
+// stable for every dt*k >= 0, never changing sign and never growing.
+double friction_decay_factor(double rate, double dt);
+double apply_friction(double velocity, double rate, double dt);
+
+// One axis of a body over one step: velocity v, position x, constant acceleration a
+// (input plus gravity), friction rate k >= 0.
+struct AxisMotion {
+  double position;
+  double velocity;
+};
+AxisMotion integrate_axis(Integrator integrator, double x, double v, double a, double k,
+                          double dt);
+// Where the body is t seconds into the step (0 <= t <= dt), for time of impact.
+double position_at(Integrator integrator, double x, double v, double a, double k, double dt,
+                   double t);
+
+// Box-box, the lecture's four separating conditions. Touching counts as intersecting.
+bool box_bottom_above_top(const Aabb& a, const Aabb& b);   // a's bottom higher than b's top
+bool box_top_below_bottom(const Aabb& a, const Aabb& b);   // a's top lower than b's bottom
+bool box_left_right_of_right(const Aabb& a, const Aabb& b);
+bool box_right_left_of_left(const Aabb& a, const Aabb& b);
+bool boxes_intersect(const Aabb& a, const Aabb& b);
+// |distance - size1/2 - size2/2| on one axis, for centres c1, c2 and half sizes h1, h2.
+double axis_penetration(double c1, double h1, double c2, double h2);
+
+// Circle-circle: colliding when distance <= r1 + r2; penetration |distance - r1 - r2|;
+// normal points from the first centre toward the second.
+struct Contact {
+  bool colliding = false;
+  double penetration = 0.0;
+  Vec2 normal{};
+};
+Contact collide_circles(Vec2 c1, double r1, Vec2 c2, double r2);
+// Circle against box, through the point of the box closest to the circle's centre.
+// The normal points from the circle toward the box.
+Contact collide_circle_box(Vec2 center, double radius, const Aabb& box);
+
+// Restitution of one contact along unit normal n (from body 1 toward body 2).
+// inv_mass 0 is a static body. If the bodies approach, the normal component of the
+// relative velocity is reflected and scaled by e (or zeroed below rest_speed), the
+// impulse split by inverse mass. Returns false when nothing changed.
+bool apply_restitution(Vec2& v1, double inv_mass1, Vec2& v2, double inv_mass2, Vec2 n,
+                       double restitution, double rest_speed);
+
+// Material mixing in one place: restitution max(a, b).
+constexpr double mix_restitution(double a, double b) { return a > b ? a : b; }
+
+}  // namespace phys

@@ -1,0 +1,67 @@
+#pragma once
+// The 2D world: bodies, and one fixed step at a time. It never reads a clock and
+// knows nothing of networking; the caller gives it dt.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "physics/body.h"
+#include "physics/settings.h"
+#include "physics/stats.h"
+
+namespace phys {
+
+class WorldImpl;
+
+class World {
+ public:
+  // The settings must pass check_settings (a programmer error otherwise).
+  explicit World(const WorldSettings& settings = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // Adds a body; bodies may be added and removed between steps at any time.
+  // Returns BodyId::invalid() and sets *error when the def is refused.
+  BodyId add_body(const BodyDef& def, BodyDefError* error = nullptr);
+  // Returns false for an unknown or stale id.
+  bool remove_body(BodyId id);
+  bool contains(BodyId id) const;
+
+  // The input of a dynamic body: held until set again. Non-finite values are
+  // refused (false); the magnitude is clamped to settings().max_acceleration.
+  bool set_acceleration(BodyId id, Vec2 acceleration);
+  // Teleports or kicks a body (tools, tests); wakes it. False for bad ids or values.
+  bool set_position(BodyId id, Vec2 position);
+  bool set_velocity(BodyId id, Vec2 velocity);
+
+  std::optional<BodyState> body(BodyId id) const;
+  // Every body, in ascending id order (the order the state hash uses).
+  std::vector<BodyState> bodies() const;
+  void for_each_body(const std::function<void(const BodyState&)>& visit) const;
+  std::size_t body_count() const;
+  std::size_t dynamic_body_count() const;
+  std::size_t awake_body_count() const;
+
+  // One fixed step of dt seconds (dt finite and > 0; a programmer error otherwise).
+  void step(double dt);
+
+  // 64-bit hash of every body's id, shape, position, velocity and acceleration, in
+  // id order, over the exact bit patterns. Equal states give equal hashes.
+  std::uint64_t state_hash() const;
+  // Steps taken since creation.
+  std::uint64_t step_count() const;
+
+  const WorldSettings& settings() const;
+  const StageCounters& counters() const;
+  const StepProfile& last_profile() const;
+
+ private:
+  std::unique_ptr<WorldImpl> impl_;
+};
+
+}  // namespace phys

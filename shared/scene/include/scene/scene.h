@@ -1,0 +1,56 @@
+#pragma once
+// A scene as plain C++: what the server and physics-sim build a World from. The
+// file format is proto/scene.proto in Protobuf text format; this header does not
+// expose Protobuf, so the core and its users never see it.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "physics/body.h"
+#include "physics/settings.h"
+#include "physics/world.h"
+
+namespace scene {
+
+struct SceneDef {
+  std::string name;
+  phys::WorldSettings world;
+  double tick_rate = 60.0;
+  int steps_per_frame = 6;
+  // Client inputs are clamped to this magnitude (m/s^2).
+  double max_acceleration = 50.0;
+  std::vector<phys::BodyDef> bodies;
+  std::vector<phys::Vec2> spawn_points;
+  // The body each client gets; its position is taken from a spawn point.
+  phys::BodyDef player;
+};
+
+// Why a scene was refused: the file, the line (and column) where Protobuf gives
+// one (0 when it does not), the field at fault, and what is wrong with it.
+struct SceneError {
+  std::string file;
+  int line = 0;
+  int column = 0;
+  std::string field;
+  std::string message;
+  // "file:line:column: field: message", leaving out what is unknown.
+  std::string to_string() const;
+};
+
+using SceneResult = std::variant<SceneDef, SceneError>;
+
+// Reads and checks a .textproto scene file.
+SceneResult load_scene_file(const std::filesystem::path& path);
+// Parses and checks scene text; `origin` names it in errors (a file name).
+SceneResult parse_scene_text(std::string_view text, std::string_view origin);
+// The scene built into the program (scenes/default.textproto, embedded at build time).
+const SceneDef& default_scene();
+std::string_view default_scene_text();
+
+// A world holding the scene's bodies, in the scene's order (ids ascend with it).
+phys::World build_world(const SceneDef& scene);
+
+}  // namespace scene
