@@ -18,11 +18,11 @@ struct BodyDef {
   Vec2 velocity{};
   // The input a client sets; it holds until it is set again.
   Vec2 acceleration{};
-  double radius = 0.5;              // circles only
-  Vec2 half_extents{0.5, 0.5};      // boxes only
-  double mass = 1.0;                // dynamic only; static bodies have infinite mass
-  double restitution = 0.0;         // 0 stops, 1 keeps the normal speed
-  Vec2 friction{};                  // per axis, the velocity decay rate in 1/s
+  double radius = 0.5;          // circles only
+  Vec2 half_extents{0.5, 0.5};  // boxes only
+  double mass = 1.0;            // dynamic only; static bodies have infinite mass
+  double restitution = 0.0;     // 0 stops, 1 keeps the normal speed
+  Vec2 friction{};              // per axis, the velocity decay rate in 1/s
 };
 
 // Why a BodyDef was refused. Every value names the field at fault.
@@ -31,14 +31,14 @@ enum class BodyDefError : std::uint8_t {
   NonFinitePosition,
   NonFiniteVelocity,
   NonFiniteAcceleration,
-  BadRadius,           // not finite, or <= 0
-  BadHalfExtents,      // not finite, or <= 0
-  BadMass,             // dynamic body whose mass is not finite or <= 0
-  BadRestitution,      // not finite, < 0 or > 1
-  BadFriction,         // not finite, or < 0
-  OutOfBounds,         // outside the world's bounds, when it has bounds
-  TooLarge,            // larger than the world's size limit
-  TooManyBodies,       // the world is full
+  BadRadius,       // not finite, or <= 0
+  BadHalfExtents,  // not finite, or <= 0
+  BadMass,         // dynamic body whose mass is not finite or <= 0
+  BadRestitution,  // not finite, < 0 or > 1
+  BadFriction,     // not finite, or < 0
+  OutOfBounds,     // outside the world's bounds, when it has bounds
+  TooLarge,        // larger than the world's size limit
+  TooManyBodies,   // the world is full
 };
 
 std::string_view describe(BodyDefError error);

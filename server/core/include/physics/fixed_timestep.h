@@ -19,7 +19,7 @@ struct FixedTimestepConfig {
 };
 
 struct FrameResult {
-  int steps = 0;                  // updates run this frame
+  int steps = 0;                    // updates run this frame
   std::uint64_t dropped_steps = 0;  // whole steps of backlog thrown away this frame
 };
 

@@ -22,18 +22,22 @@ struct AxisMotion {
   double position;
   double velocity;
 };
-AxisMotion integrate_axis(Integrator integrator, double x, double v, double a, double k,
-                          double dt);
+AxisMotion integrate_axis(Integrator integrator, double x, double v, double a, double k, double dt);
 // Where the body is t seconds into the step (0 <= t <= dt), for time of impact.
 double position_at(Integrator integrator, double x, double v, double a, double k, double dt,
                    double t);
 
-// Box-box, the lecture's four separating conditions. Touching counts as intersecting.
-bool box_bottom_above_top(const Aabb& a, const Aabb& b);   // a's bottom higher than b's top
-bool box_top_below_bottom(const Aabb& a, const Aabb& b);   // a's top lower than b's bottom
-bool box_left_right_of_right(const Aabb& a, const Aabb& b);
-bool box_right_left_of_left(const Aabb& a, const Aabb& b);
-bool boxes_intersect(const Aabb& a, const Aabb& b);
+// Box-box, the lecture's four separating conditions (a's bottom above b's top, a's
+// top below b's bottom, a's left right of b's right, a's right left of b's left).
+// If none holds they intersect: touching counts as intersecting.
+constexpr bool box_bottom_above_top(const Aabb& a, const Aabb& b) { return a.min.y > b.max.y; }
+constexpr bool box_top_below_bottom(const Aabb& a, const Aabb& b) { return a.max.y < b.min.y; }
+constexpr bool box_left_right_of_right(const Aabb& a, const Aabb& b) { return a.min.x > b.max.x; }
+constexpr bool box_right_left_of_left(const Aabb& a, const Aabb& b) { return a.max.x < b.min.x; }
+constexpr bool boxes_intersect(const Aabb& a, const Aabb& b) {
+  return !(box_bottom_above_top(a, b) || box_top_below_bottom(a, b) ||
+           box_left_right_of_right(a, b) || box_right_left_of_left(a, b));
+}
 // |distance - size1/2 - size2/2| on one axis, for centres c1, c2 and half sizes h1, h2.
 double axis_penetration(double c1, double h1, double c2, double h2);
 

@@ -29,7 +29,7 @@ struct WorldSettings {
   int substeps = 1;
   // After resolving a penetration bodies are left this far apart (the lecture's
   // "tiny amount"), so that resting bodies do not touch on the other axis.
-  double slop = 1.0e-4;
+  double slop = 1.0e-5;
   // Gauss-Seidel passes over the contacts of each collide phase.
   int position_iterations = 4;
   // Passes over the contacts in the restitution phase.
@@ -65,12 +65,12 @@ struct WorldSettings {
 enum class SettingsError : std::uint8_t {
   None,
   NonFiniteGravity,
-  BadSubsteps,        // < 1 or > 64
-  BadSlop,            // not finite, < 0 or > 0.1
-  BadIterations,      // < 1 or > 64
-  BadSpeedLimit,      // not finite, or <= 0
-  BadSleep,           // not finite, or < 0
-  BadBounds,          // not finite, or min >= max
+  BadSubsteps,    // < 1 or > 64
+  BadSlop,        // not finite, < 0 or > 0.1
+  BadIterations,  // < 1 or > 64
+  BadSpeedLimit,  // not finite, or <= 0
+  BadSleep,       // not finite, or < 0
+  BadBounds,      // not finite, or min >= max
 };
 
 const char* describe(SettingsError error);

@@ -8,22 +8,22 @@ namespace phys {
 // Counts since the world was created. A stage that a scene does not need is never
 // run, so its counter stays where it was.
 struct StageCounters {
-  std::uint64_t steps = 0;             // calls to step()
-  std::uint64_t substeps = 0;          // sub-steps run
-  std::uint64_t friction_passes = 0;   // friction stage runs
-  std::uint64_t gravity_passes = 0;    // gravity term added
-  std::uint64_t bodies_integrated = 0; // dynamic, awake bodies advanced
-  std::uint64_t box_box_tests = 0;     // narrowphase box-box tests
+  std::uint64_t steps = 0;              // calls to step()
+  std::uint64_t substeps = 0;           // sub-steps run
+  std::uint64_t friction_passes = 0;    // friction stage runs
+  std::uint64_t gravity_passes = 0;     // gravity term added
+  std::uint64_t bodies_integrated = 0;  // dynamic, awake bodies advanced
+  std::uint64_t box_box_tests = 0;      // narrowphase box-box tests
   std::uint64_t circle_circle_tests = 0;
   std::uint64_t circle_box_tests = 0;
-  std::uint64_t contacts = 0;          // overlapping pairs resolved
-  std::uint64_t swept_hits = 0;        // time-of-impact stops against static bodies
+  std::uint64_t contacts = 0;    // overlapping pairs resolved
+  std::uint64_t swept_hits = 0;  // time-of-impact stops against static bodies
   std::uint64_t restitution_passes = 0;
   std::uint64_t sleeping_bodies_skipped = 0;
-  std::uint64_t wakes = 0;             // sleeping bodies woken by a hit
-  std::uint64_t speed_clamps = 0;      // velocities clamped to max_speed
+  std::uint64_t wakes = 0;         // sleeping bodies woken by a hit
+  std::uint64_t speed_clamps = 0;  // velocities clamped to max_speed
   std::uint64_t acceleration_clamps = 0;
-  std::uint64_t bounds_clamps = 0;     // dynamic bodies held inside the bounds
+  std::uint64_t bounds_clamps = 0;  // dynamic bodies held inside the bounds
 };
 
 // Seconds spent in each phase of the last step() (all zero unless profiling is on).

@@ -1,0 +1,213 @@
+#include "physics/broadphase.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "physics/formulas.h"
+
+namespace phys {
+
+namespace {
+
+constexpr std::uint32_t kLarge = UINT32_MAX;
+// Boxes larger than this many median boxes are not filed in cells; they are tested
+// against everything (a floor or a wall: few, and everyone touches them anyway).
+constexpr double kLargeInMedians = 4.0;
+// At most this many cells per indexed box, so sparse scenes do not allocate a sea
+// of empty cells.
+constexpr double kCellsPerBox = 2.0;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double extent_of(const Aabb& b) { return std::max(b.max.x - b.min.x, b.max.y - b.min.y); }
+bool finite_box(const Aabb& b) { return is_finite(b.min) && is_finite(b.max); }
+Vec2 center_of(const Aabb& b) { return (b.min + b.max) * 0.5; }
+
+}  // namespace
+
+void find_pairs_brute_force(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
+  out.clear();
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+    for (std::uint32_t j = i + 1; j < boxes.size(); ++j) {
+      if (boxes_intersect(boxes[i], boxes[j])) out.push_back({i, j});
+    }
+  }
+}
+
+std::int32_t UniformGrid::cell_x(double x) const {
+  const double v = (x - origin_.x) * inv_cell_;
+  if (!(v > 0.0)) return 0;  // also NaN
+  if (v >= static_cast<double>(columns_ - 1)) return columns_ - 1;
+  return static_cast<std::int32_t>(v);  // truncation is floor for v > 0
+}
+
+std::int32_t UniformGrid::cell_y(double y) const {
+  const double v = (y - origin_.y) * inv_cell_;
+  if (!(v > 0.0)) return 0;
+  if (v >= static_cast<double>(rows_ - 1)) return rows_ - 1;
+  return static_cast<std::int32_t>(v);
+}
+
+void UniformGrid::build(std::span<const Aabb> boxes) {
+  boxes_.assign(boxes.begin(), boxes.end());
+  const auto n = static_cast<std::uint32_t>(boxes_.size());
+  large_.clear();
+  cell_of_.assign(n, kLarge);
+  cell_items_.clear();
+  columns_ = rows_ = 0;
+  cell_start_.assign(1, 0);
+  if (n == 0) return;
+
+  std::vector<double> extents;
+  extents.reserve(n);
+  for (const Aabb& b : boxes_) {
+    if (finite_box(b)) extents.push_back(extent_of(b));
+  }
+  double median = 0.0;
+  if (!extents.empty()) {
+    auto middle = extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2);
+    std::nth_element(extents.begin(), middle, extents.end());
+    median = *middle;
+  }
+  const double large_above = std::max(kLargeInMedians * median, 1.0e-9);
+
+  // The cell is as large as the largest ordinary box, so overlapping boxes have
+  // their centres in the same or adjacent cells.
+  Vec2 lo{kInf, kInf};
+  Vec2 hi{-kInf, -kInf};
+  double cell = 1.0e-9;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Aabb& b = boxes_[i];
+    const double extent = finite_box(b) ? extent_of(b) : kInf;
+    if (extent > large_above) {
+      large_.push_back(i);
+      continue;
+    }
+    cell = std::max(cell, extent);
+    const Vec2 c = center_of(b);
+    lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
+    hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
+  }
+  if (large_.size() == n) return;
+  reach_ = 0.5 * cell;
+
+  // Grow the cells until the grid has no more than kCellsPerBox cells per box.
+  const double budget = std::max(64.0, kCellsPerBox * static_cast<double>(n));
+  for (;;) {
+    const double cols = std::floor((hi.x - lo.x) / cell) + 1.0;
+    const double rows = std::floor((hi.y - lo.y) / cell) + 1.0;
+    if (cols * rows <= budget) {
+      columns_ = static_cast<std::int32_t>(cols);
+      rows_ = static_cast<std::int32_t>(rows);
+      break;
+    }
+    cell *= std::max(1.25, std::sqrt(cols * rows / budget));
+  }
+  cell_size_ = cell;
+  inv_cell_ = 1.0 / cell;
+  origin_ = lo;
+
+  // Counting sort by cell: each cell's boxes come out in ascending index.
+  const std::size_t cells = static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_);
+  cell_start_.assign(cells + 1, 0);
+  std::size_t next_large = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (next_large < large_.size() && large_[next_large] == i) {
+      ++next_large;
+      continue;
+    }
+    const Vec2 c = center_of(boxes_[i]);
+    const auto index = static_cast<std::uint32_t>(cell_y(c.y) * columns_ + cell_x(c.x));
+    cell_of_[i] = index;
+    ++cell_start_[index + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  cell_items_.resize(cell_start_[cells]);
+  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (cell_of_[i] != kLarge) cell_items_[fill[cell_of_[i]]++] = i;
+  }
+}
+
+template <typename Visit>
+void UniformGrid::visit_cells(double x0, double y0, double x1, double y1, Visit&& visit) const {
+  const std::int32_t cx0 = cell_x(x0);
+  const std::int32_t cx1 = cell_x(x1);
+  const std::int32_t cy0 = cell_y(y0);
+  const std::int32_t cy1 = cell_y(y1);
+  for (std::int32_t y = cy0; y <= cy1; ++y) {
+    const std::uint32_t row = static_cast<std::uint32_t>(y * columns_);
+    for (std::uint32_t k = cell_start_[row + cx0]; k < cell_start_[row + cx1 + 1]; ++k) {
+      visit(cell_items_[k]);
+    }
+  }
+}
+
+void UniformGrid::find_pairs(std::vector<BodyPair>& out) const {
+  out.clear();
+  const auto n = static_cast<std::uint32_t>(boxes_.size());
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Aabb& bi = boxes_[i];
+    scratch_.clear();
+    if (cell_of_[i] == kLarge) {
+      for (std::uint32_t j = i + 1; j < n; ++j) {
+        if (boxes_intersect(bi, boxes_[j])) scratch_.push_back(j);
+      }
+    } else {
+      if (columns_ > 0) {
+        // Centres of boxes overlapping bi lie within bi grown by the largest half
+        // extent filed: the 3x3 cells around bi's own.
+        visit_cells(bi.min.x - reach_, bi.min.y - reach_, bi.max.x + reach_, bi.max.y + reach_,
+                    [&](std::uint32_t j) {
+                      if (j > i && boxes_intersect(bi, boxes_[j])) scratch_.push_back(j);
+                    });
+      }
+      for (std::uint32_t j : large_) {
+        if (j > i && boxes_intersect(bi, boxes_[j])) scratch_.push_back(j);
+      }
+      if (scratch_.size() > 1) std::sort(scratch_.begin(), scratch_.end());
+    }
+    for (std::uint32_t j : scratch_) out.push_back({i, j});
+  }
+}
+
+void UniformGrid::find_overlaps(const Aabb& query, std::vector<std::uint32_t>& out) const {
+  out.clear();
+  if (columns_ > 0) {
+    const double x0 = query.min.x - reach_;
+    const double y0 = query.min.y - reach_;
+    const double x1 = query.max.x + reach_;
+    const double y1 = query.max.y + reach_;
+    const double grid_max_x = origin_.x + cell_size_ * columns_;
+    const double grid_max_y = origin_.y + cell_size_ * rows_;
+    const bool misses_grid = x1 < origin_.x - cell_size_ || y1 < origin_.y - cell_size_ ||
+                             x0 > grid_max_x || y0 > grid_max_y;
+    if (!misses_grid) {
+      visit_cells(x0, y0, x1, y1, [&](std::uint32_t j) {
+        if (boxes_intersect(query, boxes_[j])) out.push_back(j);
+      });
+    }
+  }
+  for (std::uint32_t j : large_) {
+    if (boxes_intersect(query, boxes_[j])) out.push_back(j);
+  }
+  if (out.size() > 1) std::sort(out.begin(), out.end());
+}
+
+void UniformGrid::find_pairs(std::span<const Aabb> boxes, std::vector<BodyPair>& out) {
+  build(boxes);
+  find_pairs(out);
+}
+
+void UniformGrid::find_pairs_between(std::span<const Aabb> queries, std::span<const Aabb> targets,
+                                     std::vector<BodyPair>& out) {
+  build(targets);
+  out.clear();
+  std::vector<std::uint32_t> hits;
+  for (std::uint32_t q = 0; q < queries.size(); ++q) {
+    find_overlaps(queries[q], hits);
+    for (std::uint32_t t : hits) out.push_back({q, t});
+  }
+}
+
+}  // namespace phys

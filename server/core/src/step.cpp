@@ -1,0 +1,529 @@
+// One sub-step of the world, in the lecture's order:
+//   friction; acceleration and gravity; move on Y, collide on Y; move on X,
+//   collide on X; restitution.
+// plus what the lecture leaves out and a server needs: a broadphase, swept motion
+// against static bodies (nothing tunnels), shock propagation for stacks, and sleep.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "physics/formulas.h"
+#include "sweep.h"
+#include "world_impl.h"
+
+namespace phys {
+
+namespace {
+
+constexpr std::uint32_t kNone = UINT32_MAX;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// A contact whose normal is within 60 degrees of "up" carries weight (supports).
+constexpr double kSupportCosine = 0.5;
+// Time-of-impact stops per body, axis and sub-step (a bounce, then maybe another).
+constexpr int kMaxHitsPerMove = 4;
+
+double component(const Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
+double& component(Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
+
+class PhaseTimer {
+ public:
+  PhaseTimer(bool on, double& into) : on_(on), into_(into) {
+    if (on_) start_ = std::chrono::steady_clock::now();
+  }
+  ~PhaseTimer() {
+    if (on_) {
+      into_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+  }
+  PhaseTimer(const PhaseTimer&) = delete;
+  PhaseTimer& operator=(const PhaseTimer&) = delete;
+
+ private:
+  bool on_;
+  double& into_;
+  std::chrono::steady_clock::time_point start_{};
+};
+
+}  // namespace
+
+class StepRunner {
+ public:
+  StepRunner(WorldImpl& world, double h)
+      : w_(world),
+        s_(world.settings),
+        h_(h),
+        gravity_on_(s_.gravity.x != 0.0 || s_.gravity.y != 0.0),
+        up_(gravity_on_ ? -s_.gravity * (1.0 / length(s_.gravity)) : Vec2{0.0, 1.0}),
+        rest_speed_(s_.rest_speed > 0.0 ? s_.rest_speed : 2.0 * length(s_.gravity) * h),
+        shock_(s_.shock_propagation && gravity_on_) {}
+
+  void run() {
+    if (w_.lists_dirty_) w_.rebuild_lists();
+    w_.counters.sleeping_bodies_skipped += w_.fixed_.size() - static_count();
+    if (w_.active_.empty()) return;
+    {
+      PhaseTimer t(s_.profile, w_.profile.integrate);
+      order_by_height();
+      integrate();
+    }
+    {
+      PhaseTimer t(s_.profile, w_.profile.broadphase);
+      find_candidates();
+    }
+    w_.contacts_.clear();
+    w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
+    move(1);
+    if (any_active_box_) collide_boxes_on(1);
+    move(0);
+    collide_on_x();
+    {
+      PhaseTimer t(s_.profile, w_.profile.resolve);
+      restitution();
+    }
+    {
+      PhaseTimer t(s_.profile, w_.profile.sleep);
+      hold_in_bounds();
+      update_sleep();
+    }
+  }
+
+ private:
+  Body& body(std::uint32_t slot) { return w_.bodies[slot]; }
+  std::size_t static_count() const { return w_.fixed_.size() - sleeping_count(); }
+  std::size_t sleeping_count() const {
+    std::size_t n = 0;
+    for (std::uint32_t slot : w_.fixed_) n += w_.bodies[slot].is_dynamic() ? 1 : 0;
+    return n;
+  }
+
+  // Awake bodies are processed from the lowest (along gravity) up, so that a body's
+  // supports are resolved before it. The order persists between steps and is
+  // nearly sorted, so insertion sort is about O(N).
+  void order_by_height() {
+    auto& order = w_.active_;
+    auto& keys = w_.sort_keys_;
+    keys.resize(order.size());
+    for (std::size_t p = 0; p < order.size(); ++p) keys[p] = dot(body(order[p]).position, up_);
+    const auto before = [&](double ka, std::uint32_t a, double kb, std::uint32_t b) {
+      return ka < kb || (ka == kb && a < b);
+    };
+    std::size_t moves = 0;
+    const std::size_t budget = 8 * order.size() + 64;
+    for (std::size_t p = 1; p < order.size() && moves <= budget; ++p) {
+      const double key = keys[p];
+      const std::uint32_t slot = order[p];
+      std::size_t q = p;
+      while (q > 0 && before(key, slot, keys[q - 1], order[q - 1])) {
+        keys[q] = keys[q - 1];
+        order[q] = order[q - 1];
+        --q;
+        ++moves;
+      }
+      keys[q] = key;
+      order[q] = slot;
+    }
+    if (moves > budget) {  // far from sorted (first step, a shuffle): sort outright
+      std::vector<std::pair<double, std::uint32_t>> keyed(order.size());
+      for (std::size_t p = 0; p < order.size(); ++p) {
+        keyed[p] = {dot(body(order[p]).position, up_), order[p]};
+      }
+      std::sort(keyed.begin(), keyed.end());
+      for (std::size_t p = 0; p < order.size(); ++p) order[p] = keyed[p].second;
+    }
+    w_.position_in_active_.assign(w_.bodies.size(), kNone);
+    for (std::size_t p = 0; p < order.size(); ++p) {
+      w_.position_in_active_[order[p]] = static_cast<std::uint32_t>(p);
+    }
+  }
+
+  // Friction, acceleration and gravity: the free motion of each awake body over the
+  // sub-step, per axis. The moves below apply it.
+  void integrate() {
+    const std::size_t n = w_.active_.size();
+    w_.step_velocity_.resize(n);
+    w_.step_displacement_.resize(n);
+    bool any_friction = false;
+    any_active_box_ = false;
+    for (std::size_t p = 0; p < n; ++p) {
+      Body& b = body(w_.active_[p]);
+      any_friction = any_friction || b.friction.x != 0.0 || b.friction.y != 0.0;
+      any_active_box_ = any_active_box_ || b.shape == Shape::Box;
+      const Vec2 a = gravity_on_ ? b.acceleration + s_.gravity : b.acceleration;
+      const AxisMotion mx =
+          integrate_axis(s_.integrator, b.position.x, b.velocity.x, a.x, b.friction.x, h_);
+      const AxisMotion my =
+          integrate_axis(s_.integrator, b.position.y, b.velocity.y, a.y, b.friction.y, h_);
+      Vec2 v{mx.velocity, my.velocity};
+      Vec2 d{mx.position - b.position.x, my.position - b.position.y};
+      const double speed = length(v);
+      if (speed > s_.max_speed) {  // the world stays finite: speeds are capped
+        const double scale = s_.max_speed / speed;
+        v = v * scale;
+        d = d * scale;
+        ++w_.counters.speed_clamps;
+      }
+      w_.step_velocity_[p] = v;
+      w_.step_displacement_[p] = d;
+    }
+    w_.counters.bodies_integrated += n;
+    if (any_friction) ++w_.counters.friction_passes;
+    if (gravity_on_) ++w_.counters.gravity_passes;
+  }
+
+  // Candidate pairs for the whole sub-step: boxes fattened by how far each body can
+  // move in it, so the pairs hold for both axis moves.
+  void find_candidates() {
+    const std::size_t n = w_.active_.size();
+    w_.active_boxes_.resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      const Body& b = body(w_.active_[p]);
+      const Vec2 d = w_.step_displacement_[p];
+      const Vec2 margin{std::fabs(d.x) + s_.slop, std::fabs(d.y) + s_.slop};
+      Aabb box = b.bounds();
+      box.min -= margin;
+      box.max += margin;
+      w_.active_boxes_[p] = box;
+    }
+    w_.active_grid_.build(w_.active_boxes_);
+    w_.active_grid_.find_pairs(w_.active_pairs_);
+
+    w_.candidates_.clear();
+    w_.first_candidate_.assign(n + 1, 0);
+    std::size_t next_pair = 0;
+    for (std::uint32_t p = 0; p < n; ++p) {
+      w_.first_candidate_[p] = static_cast<std::uint32_t>(w_.candidates_.size());
+      if (w_.fixed_grid_.size() > 0) {
+        w_.fixed_grid_.find_overlaps(w_.active_boxes_[p], w_.overlaps_);
+        for (std::uint32_t f : w_.overlaps_) {
+          w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], true});
+        }
+      }
+      while (next_pair < w_.active_pairs_.size() && w_.active_pairs_[next_pair].a == p) {
+        w_.candidates_.push_back({w_.active_[p], w_.active_[w_.active_pairs_[next_pair].b], false});
+        ++next_pair;
+      }
+    }
+    w_.first_candidate_[n] = static_cast<std::uint32_t>(w_.candidates_.size());
+  }
+
+  // Move every awake body along one axis. Against static and sleeping bodies the
+  // move is swept: it stops at the time of impact, bounces, and goes on.
+  void move(int axis) {
+    PhaseTimer t(s_.profile, w_.profile.integrate);
+    for (std::uint32_t p = 0; p < w_.active_.size(); ++p) {
+      Body& b = body(w_.active_[p]);
+      const double v_end = component(w_.step_velocity_[p], axis);
+      const double x0 = component(b.position, axis);
+      const double x_end = x0 + component(w_.step_displacement_[p], axis);
+      if (!s_.continuous) {
+        component(b.position, axis) = x_end;
+        component(b.velocity, axis) = v_end;
+        continue;
+      }
+      const double a =
+          component(b.acceleration, axis) + (gravity_on_ ? component(s_.gravity, axis) : 0.0);
+      AxisPath path{
+          s_.integrator, x0,   component(b.velocity, axis), a, component(b.friction, axis), h_,
+          x_end,         v_end};
+      sweep(p, b, axis, path);
+      component(b.position, axis) = path.x1;
+      component(b.velocity, axis) = path.v1;
+    }
+  }
+
+  void sweep(std::uint32_t p, Body& b, int axis, AxisPath& path) {
+    for (int hit = 0; hit < kMaxHitsPerMove && path.x1 != path.x0; ++hit) {
+      double first_t = kInfinity;
+      double level = 0.0;
+      double restitution = 0.0;
+      for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
+        const Candidate& cand = w_.candidates_[c];
+        if (!cand.fixed) break;  // fixed candidates come first
+        const Body& o = body(cand.upper);
+        component(b.position, axis) = path.x0;
+        const auto span = overlap_interval(b, o, axis, 0.5 * s_.slop);
+        if (!span || (path.x0 >= span->lo && path.x0 <= span->hi)) continue;
+        const double target = path.x0 < span->lo ? span->lo : span->hi;
+        const auto t = path.reaches(target);
+        if (t && *t < first_t) {
+          first_t = *t;
+          level = target;
+          restitution = mix_restitution(b.restitution, o.restitution);
+        }
+      }
+      if (!(first_t < kInfinity)) return;
+      ++w_.counters.swept_hits;
+      // Bounce at the time of impact and spend the rest of the step going back.
+      const double v_hit = path.velocity(first_t);
+      const double v_out = std::fabs(v_hit) < rest_speed_ ? 0.0 : -restitution * v_hit;
+      const double left = path.h - first_t;
+      if (v_out == 0.0) {  // resting contact: stay where it touched
+        path = {path.integrator, level, 0.0, 0.0, 0.0, left, level, 0.0};
+        return;
+      }
+      const AxisMotion rest =
+          path.integrator == Integrator::Exact
+              ? integrate_axis(Integrator::Exact, level, v_out, path.a, path.k, left)
+              : AxisMotion{level + v_out * left, v_out};
+      path = {path.integrator, level, v_out, path.a, path.k, left, rest.position, rest.velocity};
+    }
+  }
+
+  // Per-axis resolution of box pairs: the lecture's penetration on the axis, pushed
+  // apart by penetration plus slop, up if above, down if below.
+  void collide_boxes_on(int axis) {
+    PhaseTimer t(s_.profile, w_.profile.narrowphase);
+    const int other = 1 - axis;
+    const Vec2 unit = axis == 0 ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
+    for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
+      w_.supported_.assign(w_.bodies.size(), 0);
+      bool moved = false;
+      for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
+        const Candidate& cand = w_.candidates_[c];
+        Body& a = body(cand.lower);
+        Body& b = body(cand.upper);
+        if (a.shape != Shape::Box || b.shape != Shape::Box) continue;
+        ++w_.counters.box_box_tests;
+        const Aabb ba = a.bounds();
+        const Aabb bb = b.bounds();
+        if (!boxes_intersect(ba, bb)) continue;
+        // Touching on the other axis only (side by side): that axis resolves it.
+        const double across = std::min(component(ba.max, other), component(bb.max, other)) -
+                              std::max(component(ba.min, other), component(bb.min, other));
+        if (across <= 0.5 * s_.slop) continue;
+        const double ca = component(a.position, axis);
+        const double cb = component(b.position, axis);
+        const double depth =
+            axis_penetration(ca, component(a.half, axis), cb, component(b.half, axis));
+        // Resolve on this axis only if it is the shallower one. Otherwise a box that
+        // sank a little into a floor tile would be thrown sideways by the tile's
+        // width (catching on seams), or lifted by a neighbour's height.
+        if (depth > across) continue;
+        const Vec2 n = (cb >= ca) ? unit : -unit;  // from a toward b
+        moved = separate(c, a, b, n, depth) || moved;
+      }
+      if (!moved) break;
+    }
+  }
+
+  // The X phase: boxes on X, then every pair with a circle along its normal (a
+  // circle's normal needs no axis split).
+  void collide_on_x() {
+    if (any_active_box_) collide_boxes_on(0);
+    PhaseTimer t(s_.profile, w_.profile.narrowphase);
+    for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
+      w_.supported_.assign(w_.bodies.size(), 0);
+      bool moved = false;
+      for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
+        const Candidate& cand = w_.candidates_[c];
+        Body& a = body(cand.lower);
+        Body& b = body(cand.upper);
+        Contact contact;
+        if (a.shape == Shape::Circle && b.shape == Shape::Circle) {
+          ++w_.counters.circle_circle_tests;
+          contact = collide_circles(a.position, a.radius, b.position, b.radius);
+        } else if (a.shape == Shape::Circle) {
+          ++w_.counters.circle_box_tests;
+          contact = collide_circle_box(a.position, a.radius, b.bounds());
+        } else if (b.shape == Shape::Circle) {
+          ++w_.counters.circle_box_tests;
+          contact = collide_circle_box(b.position, b.radius, a.bounds());
+          contact.normal = -contact.normal;
+        } else {
+          continue;
+        }
+        if (!contact.colliding) continue;
+        moved = separate(c, a, b, contact.normal, contact.penetration) || moved;
+      }
+      if (!moved) break;
+    }
+  }
+
+  // Pushes a and b apart along n (from a toward b) by depth plus slop, split by
+  // inverse mass, and records the contact for restitution. With shock propagation a
+  // supported body is immovable for the bodies it carries.
+  bool separate(std::uint32_t c, Body& a, Body& b, Vec2 n, double depth) {
+    const double up = dot(n, up_);
+    const Candidate& cand = w_.candidates_[c];
+    double wa = 0.0;
+    double wb = 0.0;
+    if (cand.fixed) {
+      wa = 1.0;
+      if (up < -kSupportCosine) w_.supported_[cand.lower] = 1;
+    } else if (shock_ && up > kSupportCosine && w_.supported_[cand.lower]) {
+      wb = 1.0;
+      w_.supported_[cand.upper] = 1;
+    } else if (shock_ && up < -kSupportCosine && w_.supported_[cand.upper]) {
+      wa = 1.0;
+      w_.supported_[cand.lower] = 1;
+    } else {
+      const double sum = a.inv_mass + b.inv_mass;
+      wa = a.inv_mass / sum;
+      wb = b.inv_mass / sum;
+    }
+    record_contact(c, n, up);
+    const double push = depth + s_.slop;
+    if (depth == 0.0 && !(push > 0.0)) return false;
+    a.position -= n * (push * wa);
+    b.position += n * (push * wb);
+    ++w_.counters.contacts;
+    return depth > 0.0;
+  }
+
+  void record_contact(std::uint32_t c, Vec2 n, double up) {
+    std::uint32_t& slot = w_.contact_of_candidate_[c];
+    if (slot == kNone) {
+      slot = static_cast<std::uint32_t>(w_.contacts_.size());
+      w_.contacts_.push_back({c, n, false});
+    }
+    w_.contacts_[slot].normal = n;
+    w_.contacts_[slot].support = std::fabs(up) > kSupportCosine;
+  }
+
+  // The velocity component along each contact's normal is reflected and scaled by
+  // the restitution (zeroed below the rest speed), impulses split by inverse mass.
+  void restitution() {
+    auto& contacts = w_.contacts_;
+    if (contacts.empty()) return;
+    ++w_.counters.restitution_passes;
+    std::sort(contacts.begin(), contacts.end(), [](const ContactRecord& x, const ContactRecord& y) {
+      return x.candidate < y.candidate;
+    });
+    w_.contact_targets_.resize(contacts.size());
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const Candidate& cand = w_.candidates_[contacts[i].candidate];
+      const Body& a = body(cand.lower);
+      const Body& b = body(cand.upper);
+      const double closing = dot(b.velocity - a.velocity, contacts[i].normal);
+      const double e = mix_restitution(a.restitution, b.restitution);
+      w_.contact_targets_[i] = (closing < 0.0 && -closing >= rest_speed_) ? -e * closing : 0.0;
+      if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
+    }
+    for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
+      w_.supported_.assign(w_.bodies.size(), 0);
+      bool changed = false;
+      for (std::size_t i = 0; i < contacts.size(); ++i) {
+        const Candidate& cand = w_.candidates_[contacts[i].candidate];
+        Body& a = body(cand.lower);
+        Body& b = body(cand.upper);
+        const Vec2 n = contacts[i].normal;
+        const double up = dot(n, up_);
+        double wa = a.inv_mass;
+        double wb = cand.fixed ? 0.0 : b.inv_mass;
+        if (cand.fixed) {
+          if (up < -kSupportCosine) w_.supported_[cand.lower] = 1;
+        } else if (shock_ && up > kSupportCosine && w_.supported_[cand.lower]) {
+          wa = 0.0;
+          w_.supported_[cand.upper] = 1;
+        } else if (shock_ && up < -kSupportCosine && w_.supported_[cand.upper]) {
+          wb = 0.0;
+          w_.supported_[cand.lower] = 1;
+        }
+        const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
+        const double closing = dot(vb - a.velocity, n);
+        const double target = w_.contact_targets_[i];
+        if (closing >= target || wa + wb <= 0.0) continue;
+        const double impulse = (target - closing) / (wa + wb);
+        a.velocity -= n * (impulse * wa);
+        if (!cand.fixed) b.velocity += n * (impulse * wb);
+        changed = true;
+      }
+      if (!changed) break;
+    }
+  }
+
+  // A sleeping body wakes when it is hit: harder than a resting contact presses
+  // (from above), or at all from the side or below.
+  void wake_if_hit(const Candidate& cand, const ContactRecord& contact, double closing) {
+    const bool resting_on_it = dot(contact.normal, up_) < -kSupportCosine;
+    const double threshold = resting_on_it ? rest_speed_ : s_.sleep_speed;
+    if (-closing > threshold) w_.to_wake_.push_back(cand.upper);
+  }
+
+  void hold_in_bounds() {
+    if (!s_.has_bounds) return;
+    for (std::uint32_t slot : w_.active_) {
+      Body& b = body(slot);
+      bool clamped = false;
+      for (int axis = 0; axis < 2; ++axis) {
+        const double lo = component(s_.bounds.min, axis) + component(b.half, axis);
+        const double hi = component(s_.bounds.max, axis) - component(b.half, axis);
+        double& x = component(b.position, axis);
+        double& v = component(b.velocity, axis);
+        if (x < lo) {
+          x = std::min(lo, hi);
+          v = std::max(v, 0.0);
+          clamped = true;
+        } else if (x > hi) {
+          x = std::max(hi, lo);
+          v = std::min(v, 0.0);
+          clamped = true;
+        }
+      }
+      if (clamped) ++w_.counters.bounds_clamps;
+    }
+  }
+
+  // A body that has been slow for sleep_time sleeps, if every awake body it touches
+  // is ready to sleep too (so a pile falls asleep together, not from the bottom up).
+  void update_sleep() {
+    for (std::uint32_t slot : w_.to_wake_) w_.wake(slot);
+    w_.to_wake_.clear();
+    if (!s_.sleeping) return;
+    auto& ready = w_.sleep_ready_;
+    ready.assign(w_.bodies.size(), 0);
+    bool any_ready = false;
+    for (std::uint32_t slot : w_.active_) {
+      Body& b = body(slot);
+      if (length(b.velocity) < s_.sleep_speed) {
+        b.still_time += h_;
+      } else {
+        b.still_time = 0.0;
+      }
+      if (b.still_time >= s_.sleep_time && b.awake) {
+        ready[slot] = 1;
+        any_ready = true;
+      }
+    }
+    if (!any_ready) return;
+    for (const ContactRecord& contact : w_.contacts_) {
+      const Candidate& cand = w_.candidates_[contact.candidate];
+      if (cand.fixed) continue;
+      if (!ready[cand.lower] || !ready[cand.upper]) ready[cand.lower] = ready[cand.upper] = 0;
+    }
+    for (std::uint32_t slot : w_.active_) {
+      if (!ready[slot]) continue;
+      Body& b = body(slot);
+      b.awake = false;
+      b.velocity = {};
+      w_.lists_dirty_ = true;
+    }
+  }
+
+  WorldImpl& w_;
+  const WorldSettings& s_;
+  double h_;
+  bool gravity_on_;
+  Vec2 up_;
+  double rest_speed_;
+  bool shock_;
+  bool any_active_box_ = false;
+};
+
+void WorldImpl::step(double dt) {
+  const auto start = std::chrono::steady_clock::now();
+  profile = {};
+  const double h = dt / settings.substeps;
+  for (int i = 0; i < settings.substeps; ++i) {
+    StepRunner(*this, h).run();
+    ++counters.substeps;
+  }
+  ++steps;
+  ++counters.steps;
+  if (settings.profile) {
+    profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+}
+
+}  // namespace phys

@@ -1,0 +1,291 @@
+#include "physics/world.h"
+
+#include <algorithm>
+#include <bit>
+#include <cassert>
+#include <cmath>
+
+#include "world_impl.h"
+
+namespace phys {
+
+// ---- WorldImpl: bodies and their slots ----
+
+WorldImpl::WorldImpl(const WorldSettings& s) : settings(s) {
+  assert(check_settings(s) == SettingsError::None);
+}
+
+BodyDefError WorldImpl::check(const BodyDef& def) const {
+  if (!is_finite(def.position)) return BodyDefError::NonFinitePosition;
+  if (!is_finite(def.velocity)) return BodyDefError::NonFiniteVelocity;
+  if (!is_finite(def.acceleration)) return BodyDefError::NonFiniteAcceleration;
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (def.shape == Shape::Circle) {
+    if (!positive(def.radius)) return BodyDefError::BadRadius;
+    if (def.radius > settings.max_body_size) return BodyDefError::TooLarge;
+  } else {
+    if (!positive(def.half_extents.x) || !positive(def.half_extents.y)) {
+      return BodyDefError::BadHalfExtents;
+    }
+    if (std::max(def.half_extents.x, def.half_extents.y) > settings.max_body_size) {
+      return BodyDefError::TooLarge;
+    }
+  }
+  if (def.motion == Motion::Dynamic && !positive(def.mass)) return BodyDefError::BadMass;
+  if (!std::isfinite(def.restitution) || def.restitution < 0.0 || def.restitution > 1.0) {
+    return BodyDefError::BadRestitution;
+  }
+  if (!is_finite(def.friction) || def.friction.x < 0.0 || def.friction.y < 0.0) {
+    return BodyDefError::BadFriction;
+  }
+  if (settings.has_bounds) {
+    const Vec2 p = def.position;
+    const Aabb& b = settings.bounds;
+    if (p.x < b.min.x || p.x > b.max.x || p.y < b.min.y || p.y > b.max.y) {
+      return BodyDefError::OutOfBounds;
+    }
+  }
+  if (alive_count_ >= settings.max_bodies) return BodyDefError::TooManyBodies;
+  return BodyDefError::None;
+}
+
+BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
+  const BodyDefError problem = check(def);
+  if (error) *error = problem;
+  if (problem != BodyDefError::None) return BodyId::invalid();
+
+  std::uint32_t index;
+  if (!free_slots_.empty()) {
+    index = free_slots_.back();
+    free_slots_.pop_back();
+  } else {
+    index = static_cast<std::uint32_t>(bodies.size());
+    bodies.emplace_back();
+  }
+  Body& b = bodies[index];
+  const std::uint32_t generation = b.generation + 1;
+  b = Body{};
+  b.generation = generation;
+  b.alive = true;
+  b.shape = def.shape;
+  b.motion = def.motion;
+  b.position = def.position;
+  b.radius = def.shape == Shape::Circle ? def.radius : 0.0;
+  b.half = def.shape == Shape::Circle ? Vec2{def.radius, def.radius} : def.half_extents;
+  b.restitution = def.restitution;
+  b.friction = def.friction;
+  if (def.motion == Motion::Dynamic) {
+    b.velocity = def.velocity;
+    b.acceleration = def.acceleration;
+    b.mass = def.mass;
+    b.inv_mass = 1.0 / def.mass;
+    ++dynamic_count_;
+  }
+  ++alive_count_;
+  lists_dirty_ = true;
+  return {index, generation};
+}
+
+Body* WorldImpl::find(BodyId id) {
+  if (id.index >= bodies.size()) return nullptr;
+  Body& b = bodies[id.index];
+  return (b.alive && b.generation == id.generation) ? &b : nullptr;
+}
+
+const Body* WorldImpl::find(BodyId id) const { return const_cast<WorldImpl*>(this)->find(id); }
+
+bool WorldImpl::remove_body(BodyId id) {
+  Body* b = find(id);
+  if (!b) return false;
+  // Whatever rested on it must notice it is gone.
+  const Aabb around{b->position - b->half - Vec2{settings.slop, settings.slop} * 2.0,
+                    b->position + b->half + Vec2{settings.slop, settings.slop} * 2.0};
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    Body& o = bodies[i];
+    if (o.alive && o.is_dynamic() && !o.awake && i != id.index) {
+      const Aabb ob = o.bounds();
+      if (!(ob.min.x > around.max.x || ob.max.x < around.min.x || ob.min.y > around.max.y ||
+            ob.max.y < around.min.y)) {
+        wake(i);
+      }
+    }
+  }
+  if (b->is_dynamic()) --dynamic_count_;
+  --alive_count_;
+  b->alive = false;
+  free_slots_.push_back(id.index);
+  lists_dirty_ = true;
+  return true;
+}
+
+void WorldImpl::wake(std::uint32_t index) {
+  Body& b = bodies[index];
+  b.still_time = 0.0;
+  if (b.alive && b.is_dynamic() && !b.awake) {
+    b.awake = true;
+    ++counters.wakes;
+    lists_dirty_ = true;
+  }
+}
+
+void WorldImpl::rebuild_lists() {
+  active_.clear();
+  fixed_.clear();
+  fixed_boxes_.clear();
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (!b.alive) continue;
+    if (b.is_dynamic() && b.awake) {
+      active_.push_back(i);
+    } else {
+      fixed_.push_back(i);
+      fixed_boxes_.push_back(b.bounds());
+    }
+  }
+  fixed_grid_.build(fixed_boxes_);
+  lists_dirty_ = false;
+}
+
+BodyState WorldImpl::state_of(std::uint32_t index) const {
+  const Body& b = bodies[index];
+  BodyState s;
+  s.id = {index, b.generation};
+  s.shape = b.shape;
+  s.motion = b.motion;
+  s.position = b.position;
+  s.velocity = b.velocity;
+  s.acceleration = b.acceleration;
+  s.radius = b.radius;
+  s.half_extents = b.shape == Shape::Box ? b.half : Vec2{};
+  s.mass = b.mass;
+  s.restitution = b.restitution;
+  s.friction = b.friction;
+  s.awake = b.is_dynamic() && b.awake;
+  return s;
+}
+
+// FNV-1a over 64-bit words of the exact bit patterns, in slot order.
+std::uint64_t WorldImpl::state_hash() const {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  const auto mix = [&h](std::uint64_t word) {
+    for (int i = 0; i < 8; ++i) {
+      h ^= (word >> (8 * i)) & 0xffu;
+      h *= 0x100000001b3ull;
+    }
+  };
+  const auto mix_double = [&](double v) { mix(std::bit_cast<std::uint64_t>(v)); };
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (!b.alive) continue;
+    mix((static_cast<std::uint64_t>(b.generation) << 32) | i);
+    mix(static_cast<std::uint64_t>(b.shape) | (static_cast<std::uint64_t>(b.motion) << 8));
+    mix_double(b.position.x);
+    mix_double(b.position.y);
+    mix_double(b.velocity.x);
+    mix_double(b.velocity.y);
+    mix_double(b.acceleration.x);
+    mix_double(b.acceleration.y);
+    mix_double(b.half.x);
+    mix_double(b.half.y);
+  }
+  return h;
+}
+
+// ---- World: the public face ----
+
+World::World(const WorldSettings& settings) : impl_(std::make_unique<WorldImpl>(settings)) {}
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+BodyId World::add_body(const BodyDef& def, BodyDefError* error) {
+  return impl_->add_body(def, error);
+}
+bool World::remove_body(BodyId id) { return impl_->remove_body(id); }
+bool World::contains(BodyId id) const { return impl_->find(id) != nullptr; }
+
+bool World::set_acceleration(BodyId id, Vec2 acceleration) {
+  Body* b = impl_->find(id);
+  if (!b || !b->is_dynamic() || !is_finite(acceleration)) return false;
+  const double magnitude = length(acceleration);
+  const double limit = impl_->settings.max_acceleration;
+  if (magnitude > limit) {
+    acceleration = acceleration * (limit / magnitude);
+    ++impl_->counters.acceleration_clamps;
+  }
+  if (acceleration == b->acceleration) return true;
+  b->acceleration = acceleration;
+  impl_->wake(id.index);
+  return true;
+}
+
+bool World::set_position(BodyId id, Vec2 position) {
+  Body* b = impl_->find(id);
+  if (!b || !is_finite(position)) return false;
+  b->position = position;
+  b->still_time = 0.0;
+  impl_->wake(id.index);
+  impl_->lists_dirty_ = true;
+  return true;
+}
+
+bool World::set_velocity(BodyId id, Vec2 velocity) {
+  Body* b = impl_->find(id);
+  if (!b || !b->is_dynamic() || !is_finite(velocity)) return false;
+  const double speed = length(velocity);
+  if (speed > impl_->settings.max_speed) {
+    velocity = velocity * (impl_->settings.max_speed / speed);
+    ++impl_->counters.speed_clamps;
+  }
+  b->velocity = velocity;
+  impl_->wake(id.index);
+  return true;
+}
+
+std::optional<BodyState> World::body(BodyId id) const {
+  if (!impl_->find(id)) return std::nullopt;
+  return impl_->state_of(id.index);
+}
+
+std::vector<BodyState> World::bodies() const {
+  std::vector<BodyState> out;
+  out.reserve(impl_->bodies.size());
+  for_each_body([&out](const BodyState& s) { out.push_back(s); });
+  return out;
+}
+
+void World::for_each_body(const std::function<void(const BodyState&)>& visit) const {
+  for (std::uint32_t i = 0; i < impl_->bodies.size(); ++i) {
+    if (impl_->bodies[i].alive) visit(impl_->state_of(i));
+  }
+}
+
+std::size_t World::body_count() const {
+  return static_cast<std::size_t>(std::count_if(impl_->bodies.begin(), impl_->bodies.end(),
+                                                [](const Body& b) { return b.alive; }));
+}
+
+std::size_t World::dynamic_body_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(impl_->bodies.begin(), impl_->bodies.end(),
+                    [](const Body& b) { return b.alive && b.is_dynamic(); }));
+}
+
+std::size_t World::awake_body_count() const {
+  return static_cast<std::size_t>(
+      std::count_if(impl_->bodies.begin(), impl_->bodies.end(),
+                    [](const Body& b) { return b.alive && b.is_dynamic() && b.awake; }));
+}
+
+void World::step(double dt) {
+  assert(std::isfinite(dt) && dt > 0.0);
+  impl_->step(dt);
+}
+
+std::uint64_t World::state_hash() const { return impl_->state_hash(); }
+std::uint64_t World::step_count() const { return impl_->steps; }
+const WorldSettings& World::settings() const { return impl_->settings; }
+const StageCounters& World::counters() const { return impl_->counters; }
+const StepProfile& World::last_profile() const { return impl_->profile; }
+
+}  // namespace phys
