@@ -22,6 +22,8 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kSupportCosine = 0.5;
 // Time-of-impact stops per body, axis and sub-step (a bounce, then maybe another).
 constexpr int kMaxHitsPerMove = 4;
+// Candidate boxes grow by this fraction of a body's smaller half extent.
+constexpr double kPushMargin = 0.1;
 
 double component(const Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
 double& component(Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
@@ -147,6 +149,7 @@ class StepRunner {
     any_active_box_ = false;
     for (std::size_t p = 0; p < n; ++p) {
       Body& b = body(w_.active_[p]);
+      b.correction = {};
       any_friction = any_friction || b.friction.x != 0.0 || b.friction.y != 0.0;
       any_active_box_ = any_active_box_ || b.shape == Shape::Box;
       const Vec2 a = gravity_on_ ? b.acceleration + s_.gravity : b.acceleration;
@@ -179,7 +182,10 @@ class StepRunner {
     for (std::size_t p = 0; p < n; ++p) {
       const Body& b = body(w_.active_[p]);
       const Vec2 d = w_.step_displacement_[p];
-      const Vec2 margin{std::fabs(d.x) + s_.slop, std::fabs(d.y) + s_.slop};
+      // Beyond its own motion, a body can be pushed by its neighbours while contacts
+      // are resolved: a tenth of its size keeps those pushes within the pairs found.
+      const double pushed = kPushMargin * std::min(b.half.x, b.half.y) + s_.slop;
+      const Vec2 margin{std::fabs(d.x) + pushed, std::fabs(d.y) + pushed};
       Aabb box = b.bounds();
       box.min -= margin;
       box.max += margin;
@@ -367,6 +373,8 @@ class StepRunner {
     if (depth == 0.0 && !(push > 0.0)) return false;
     a.position -= n * (push * wa);
     b.position += n * (push * wb);
+    a.correction -= n * (push * wa);
+    b.correction += n * (push * wb);
     ++w_.counters.contacts;
     return depth > 0.0;
   }
@@ -391,6 +399,8 @@ class StepRunner {
       return x.candidate < y.candidate;
     });
     w_.contact_targets_.resize(contacts.size());
+    w_.contact_impulses_.assign(contacts.size(), 0.0);
+    w_.contact_warm_.resize(contacts.size());
     for (std::size_t i = 0; i < contacts.size(); ++i) {
       const Candidate& cand = w_.candidates_[contacts[i].candidate];
       const Body& a = body(cand.lower);
@@ -398,8 +408,10 @@ class StepRunner {
       const double closing = dot(b.velocity - a.velocity, contacts[i].normal);
       const double e = mix_restitution(a.restitution, b.restitution);
       w_.contact_targets_[i] = (closing < 0.0 && -closing >= rest_speed_) ? -e * closing : 0.0;
+      w_.contact_warm_[i] = s_.warm_starting ? a.warm_impulse(cand.upper, b.generation) : 0.0;
       if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
     }
+    cancel_velocity_into_corrections();
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       w_.supported_.assign(w_.bodies.size(), 0);
       bool changed = false;
@@ -411,25 +423,75 @@ class StepRunner {
         const double up = dot(n, up_);
         double wa = a.inv_mass;
         double wb = cand.fixed ? 0.0 : b.inv_mass;
-        if (cand.fixed) {
-          if (up < -kSupportCosine) w_.supported_[cand.lower] = 1;
-        } else if (shock_ && up > kSupportCosine && w_.supported_[cand.lower]) {
-          wa = 0.0;
-          w_.supported_[cand.upper] = 1;
-        } else if (shock_ && up < -kSupportCosine && w_.supported_[cand.upper]) {
-          wb = 0.0;
-          w_.supported_[cand.lower] = 1;
+        if (shock_) {
+          const double up = dot(n, up_);
+          if (cand.fixed) {
+            if (up < -kSupportCosine) w_.supported_[cand.lower] = 1;
+          } else if (up > kSupportCosine && w_.supported_[cand.lower]) {
+            wa = 0.0;
+            w_.supported_[cand.upper] = 1;
+          } else if (up < -kSupportCosine && w_.supported_[cand.upper]) {
+            wb = 0.0;
+            w_.supported_[cand.lower] = 1;
+          }
         }
         const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
         const double closing = dot(vb - a.velocity, n);
-        const double target = w_.contact_targets_[i];
-        if (closing >= target || wa + wb <= 0.0) continue;
-        const double impulse = (target - closing) / (wa + wb);
+        if (wa + wb <= 0.0) continue;
+        // Sequential impulses: the impulse accumulated on a contact may shrink again
+        // but never pull (stay >= 0), so iterations converge to a velocity that
+        // neither approaches nor separates from resting contacts.
+        double& total = w_.contact_impulses_[i];
+        if (iteration == 0 && w_.contact_warm_[i] > 0.0) {
+          // Warm start: begin from last step's impulse on this pair, so resting
+          // contacts converge over steps instead of within one.
+          total = w_.contact_warm_[i];
+          a.velocity -= n * (total * wa);
+          if (!cand.fixed) b.velocity += n * (total * wb);
+          changed = true;
+          continue;
+        }
+        const double wanted = std::max(total + (w_.contact_targets_[i] - closing) / (wa + wb), 0.0);
+        const double impulse = wanted - total;
+        if (impulse == 0.0) continue;
+        total = wanted;
         a.velocity -= n * (impulse * wa);
         if (!cand.fixed) b.velocity += n * (impulse * wb);
-        changed = true;
+        changed = changed || std::fabs(impulse) > 1.0e-12;
       }
-      if (!changed) break;
+      if (!changed && iteration > 0) break;
+    }
+    if (s_.warm_starting) remember_impulses();
+  }
+
+  // Each awake body keeps the impulses of the contacts it was the lower body of.
+  void remember_impulses() {
+    for (std::uint32_t slot : w_.active_) body(slot).warm_count = 0;
+    const auto& contacts = w_.contacts_;
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const double total = w_.contact_impulses_[i];
+      if (total <= 0.0) continue;
+      const Candidate& cand = w_.candidates_[contacts[i].candidate];
+      Body& a = body(cand.lower);
+      if (a.warm_count < Body::kWarmSlots) {
+        a.warm[a.warm_count++] = {cand.upper, body(cand.upper).generation, total};
+      }
+    }
+  }
+
+  // A body pushed back out of a penetration this sub-step loses the velocity that
+  // drove it in, up to correction / h, but gains none along the push. Without this a
+  // body jammed against others (a row pressed to a wall) keeps the velocity the
+  // contact iterations could not remove: it is put back in place every step while
+  // its velocity grows, and the pile never comes to rest.
+  void cancel_velocity_into_corrections() {
+    for (std::uint32_t slot : w_.active_) {
+      Body& b = body(slot);
+      const double pushed = length(b.correction);
+      if (pushed == 0.0) continue;
+      const Vec2 u = b.correction * (1.0 / pushed);
+      const double into = dot(b.velocity, u);
+      if (into < 0.0) b.velocity += u * std::min(-into, pushed / h_);
     }
   }
 
@@ -465,36 +527,56 @@ class StepRunner {
     }
   }
 
-  // A body that has been slow for sleep_time sleeps, if every awake body it touches
-  // is ready to sleep too (so a pile falls asleep together, not from the bottom up).
+  // A body that has been still for sleep_time is ready to sleep. Bodies near each
+  // other form an island (union-find over this sub-step's candidate pairs, static
+  // and sleeping bodies not linking), and an island sleeps only when all of it is
+  // ready: a pile falls asleep together, never from the bottom while it is still
+  // being loaded.
   void update_sleep() {
     for (std::uint32_t slot : w_.to_wake_) w_.wake(slot);
     w_.to_wake_.clear();
     if (!s_.sleeping) return;
-    auto& ready = w_.sleep_ready_;
-    ready.assign(w_.bodies.size(), 0);
+    const std::size_t n = w_.active_.size();
     bool any_ready = false;
+    // "Still" is judged over the window, not by the speed of one step: a body of a
+    // pile jitters by rounding-sized pushes at any instant, but a body at rest stays
+    // within sleep_speed * sleep_time of where the window began.
+    const double radius = s_.sleep_speed * s_.sleep_time;
     for (std::uint32_t slot : w_.active_) {
       Body& b = body(slot);
-      if (length(b.velocity) < s_.sleep_speed) {
-        b.still_time += h_;
-      } else {
+      if (length(b.position - b.still_anchor) > radius) {
+        b.still_anchor = b.position;
         b.still_time = 0.0;
+      } else {
+        b.still_time += h_;
       }
-      if (b.still_time >= s_.sleep_time && b.awake) {
-        ready[slot] = 1;
-        any_ready = true;
-      }
+      any_ready = any_ready || b.still_time >= s_.sleep_time;
     }
     if (!any_ready) return;
-    for (const ContactRecord& contact : w_.contacts_) {
-      const Candidate& cand = w_.candidates_[contact.candidate];
+
+    auto& parent = w_.island_parent_;
+    parent.resize(n);
+    for (std::uint32_t p = 0; p < n; ++p) parent[p] = p;
+    const auto root = [&parent](std::uint32_t p) {
+      while (parent[p] != p) p = parent[p] = parent[parent[p]];
+      return p;
+    };
+    // Islands link through candidate pairs, not only touching ones: neighbours a
+    // slop apart in a pile are one island, so no part of a pile sleeps alone.
+    for (const Candidate& cand : w_.candidates_) {
       if (cand.fixed) continue;
-      if (!ready[cand.lower] || !ready[cand.upper]) ready[cand.lower] = ready[cand.upper] = 0;
+      const std::uint32_t a = root(w_.position_in_active_[cand.lower]);
+      const std::uint32_t b = root(w_.position_in_active_[cand.upper]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
-    for (std::uint32_t slot : w_.active_) {
-      if (!ready[slot]) continue;
-      Body& b = body(slot);
+    auto& island_ready = w_.sleep_ready_;
+    island_ready.assign(n, 1);
+    for (std::uint32_t p = 0; p < n; ++p) {
+      if (body(w_.active_[p]).still_time < s_.sleep_time) island_ready[root(p)] = 0;
+    }
+    for (std::uint32_t p = 0; p < n; ++p) {
+      if (!island_ready[root(p)]) continue;
+      Body& b = body(w_.active_[p]);
       b.awake = false;
       b.velocity = {};
       w_.lists_dirty_ = true;

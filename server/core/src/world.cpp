@@ -121,6 +121,7 @@ bool WorldImpl::remove_body(BodyId id) {
 void WorldImpl::wake(std::uint32_t index) {
   Body& b = bodies[index];
   b.still_time = 0.0;
+  b.still_anchor = b.position;
   if (b.alive && b.is_dynamic() && !b.awake) {
     b.awake = true;
     ++counters.wakes;

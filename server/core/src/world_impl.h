@@ -20,7 +20,26 @@ struct Body {
   double inv_mass = 0.0;  // 0: static, or immovable
   double restitution = 0.0;
   Vec2 friction{};
-  double still_time = 0.0;  // seconds spent slower than sleep_speed
+  double still_time = 0.0;  // seconds it has stayed near still_anchor
+  Vec2 still_anchor{};
+  Vec2 correction{};  // how far penetration resolution moved it this sub-step
+  // Last sub-step's contact impulses toward the bodies it supported (warm start).
+  struct WarmImpulse {
+    std::uint32_t partner;
+    std::uint32_t generation;
+    double impulse;
+  };
+  static constexpr std::uint8_t kWarmSlots = 8;
+  WarmImpulse warm[kWarmSlots]{};
+  std::uint8_t warm_count = 0;
+  double warm_impulse(std::uint32_t partner, std::uint32_t partner_generation) const {
+    for (std::uint8_t i = 0; i < warm_count; ++i) {
+      if (warm[i].partner == partner && warm[i].generation == partner_generation) {
+        return warm[i].impulse;
+      }
+    }
+    return 0.0;
+  }
   std::uint32_t generation = 0;
   Shape shape = Shape::Box;
   Motion motion = Motion::Dynamic;
@@ -100,7 +119,10 @@ class WorldImpl {
   std::vector<std::uint32_t> to_wake_;
   std::vector<double> sort_keys_;
   std::vector<double> contact_targets_;
+  std::vector<double> contact_impulses_;
+  std::vector<double> contact_warm_;
   std::vector<std::uint8_t> sleep_ready_;
+  std::vector<std::uint32_t> island_parent_;
 };
 
 }  // namespace phys

@@ -33,7 +33,10 @@ struct WorldSettings {
   // Gauss-Seidel passes over the contacts of each collide phase.
   int position_iterations = 4;
   // Passes over the contacts in the restitution phase.
-  int velocity_iterations = 4;
+  int velocity_iterations = 8;
+  // Start each contact's impulse from the last step's (Box2D's warm starting), so
+  // resting contacts converge over steps, not within one.
+  bool warm_starting = true;
   // Swept (time-of-impact) motion against static bodies, so nothing tunnels.
   bool continuous = true;
   // Shock propagation: with gravity, a body resting on support is immovable for
