@@ -58,8 +58,8 @@ void UniformGrid::build(std::span<const Aabb> boxes) {
   cell_start_.assign(1, 0);
   if (n == 0) return;
 
-  std::vector<double> extents;
-  extents.reserve(n);
+  std::vector<double>& extents = extents_;
+  extents.clear();
   for (const Aabb& b : boxes_) {
     if (finite_box(b)) extents.push_back(extent_of(b));
   }
@@ -123,51 +123,87 @@ void UniformGrid::build(std::span<const Aabb> boxes) {
   }
   for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_items_.resize(cell_start_[cells]);
-  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  std::vector<std::uint32_t>& fill = fill_;
+  fill.assign(cell_start_.begin(), cell_start_.end() - 1);
   for (std::uint32_t i = 0; i < n; ++i) {
     if (cell_of_[i] != kLarge) cell_items_[fill[cell_of_[i]]++] = i;
   }
-}
-
-template <typename Visit>
-void UniformGrid::visit_cells(double x0, double y0, double x1, double y1, Visit&& visit) const {
-  const std::int32_t cx0 = cell_x(x0);
-  const std::int32_t cx1 = cell_x(x1);
-  const std::int32_t cy0 = cell_y(y0);
-  const std::int32_t cy1 = cell_y(y1);
-  for (std::int32_t y = cy0; y <= cy1; ++y) {
-    const std::uint32_t row = static_cast<std::uint32_t>(y * columns_);
-    for (std::uint32_t k = cell_start_[row + cx0]; k < cell_start_[row + cx1 + 1]; ++k) {
-      visit(cell_items_[k]);
-    }
-  }
+  cell_boxes_.resize(cell_items_.size());
+  for (std::size_t k = 0; k < cell_items_.size(); ++k) cell_boxes_[k] = boxes_[cell_items_[k]];
 }
 
 void UniformGrid::find_pairs(std::vector<BodyPair>& out) const {
-  out.clear();
-  const auto n = static_cast<std::uint32_t>(boxes_.size());
-  for (std::uint32_t i = 0; i < n; ++i) {
-    const Aabb& bi = boxes_[i];
-    scratch_.clear();
-    if (cell_of_[i] == kLarge) {
-      for (std::uint32_t j = i + 1; j < n; ++j) {
-        if (boxes_intersect(bi, boxes_[j])) scratch_.push_back(j);
+  // Each cell is tested against itself and four of its neighbours (east, and the
+  // three above), so every pair of filed boxes is tested exactly once: the cells
+  // are as large as the largest filed box, so overlapping boxes sit in the same
+  // or adjacent cells.
+  auto& found = unsorted_;
+  found.clear();
+  const auto emit = [&found](std::uint32_t i, std::uint32_t j) {
+    found.push_back(i < j ? BodyPair{i, j} : BodyPair{j, i});
+  };
+  for (std::int32_t cy = 0; cy < rows_; ++cy) {
+    for (std::int32_t cx = 0; cx < columns_; ++cx) {
+      const std::uint32_t cell = static_cast<std::uint32_t>(cy * columns_ + cx);
+      const std::uint32_t begin = cell_start_[cell];
+      const std::uint32_t end = cell_start_[cell + 1];
+      if (begin == end) continue;
+      // Neighbour ranges: east in this row, then west..east in the row above.
+      std::uint32_t ranges[3][2];
+      int range_count = 0;
+      if (cx + 1 < columns_) {
+        ranges[range_count][0] = cell_start_[cell + 1];
+        ranges[range_count++][1] = cell_start_[cell + 2];
       }
-    } else {
-      if (columns_ > 0) {
-        // Centres of boxes overlapping bi lie within bi grown by the largest half
-        // extent filed: the 3x3 cells around bi's own.
-        visit_cells(bi.min.x - reach_, bi.min.y - reach_, bi.max.x + reach_, bi.max.y + reach_,
-                    [&](std::uint32_t j) {
-                      if (j > i && boxes_intersect(bi, boxes_[j])) scratch_.push_back(j);
-                    });
+      if (cy + 1 < rows_) {
+        const std::uint32_t above = cell + static_cast<std::uint32_t>(columns_);
+        const std::uint32_t west = cx > 0 ? above - 1 : above;
+        const std::uint32_t east = cx + 1 < columns_ ? above + 1 : above;
+        ranges[range_count][0] = cell_start_[west];
+        ranges[range_count++][1] = cell_start_[east + 1];
       }
-      for (std::uint32_t j : large_) {
-        if (j > i && boxes_intersect(bi, boxes_[j])) scratch_.push_back(j);
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const Aabb& bk = cell_boxes_[k];
+        for (std::uint32_t m = k + 1; m < end; ++m) {
+          if (boxes_intersect(bk, cell_boxes_[m])) emit(cell_items_[k], cell_items_[m]);
+        }
+        for (int r = 0; r < range_count; ++r) {
+          for (std::uint32_t m = ranges[r][0]; m < ranges[r][1]; ++m) {
+            if (boxes_intersect(bk, cell_boxes_[m])) emit(cell_items_[k], cell_items_[m]);
+          }
+        }
       }
-      if (scratch_.size() > 1) std::sort(scratch_.begin(), scratch_.end());
     }
-    for (std::uint32_t j : scratch_) out.push_back({i, j});
+  }
+  // Large boxes against everything (each pair of two large boxes once).
+  const auto n = static_cast<std::uint32_t>(boxes_.size());
+  for (std::uint32_t large : large_) {
+    for (std::uint32_t j = 0; j < n; ++j) {
+      if (j == large || (cell_of_[j] == kLarge && j < large)) continue;
+      if (boxes_intersect(boxes_[large], boxes_[j])) emit(large, j);
+    }
+  }
+
+  // Counting sort by the first index, then each group by the second: the order
+  // depends on the inputs alone, as documented (i ascending, then j ascending).
+  group_start_.assign(n + 1, 0);
+  for (const BodyPair& p : found) ++group_start_[p.a + 1];
+  for (std::uint32_t i = 0; i < n; ++i) group_start_[i + 1] += group_start_[i];
+  out.resize(found.size());
+  for (const BodyPair& p : found) out[group_start_[p.a]++] = p;
+  std::uint32_t begin = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t end = group_start_[i];         // now the end of group i
+    for (std::uint32_t k = begin + 1; k < end; ++k) {  // insertion sort: groups are tiny
+      const BodyPair p = out[k];
+      std::uint32_t m = k;
+      while (m > begin && out[m - 1].b > p.b) {
+        out[m] = out[m - 1];
+        --m;
+      }
+      out[m] = p;
+    }
+    begin = end;
   }
 }
 
@@ -183,9 +219,14 @@ void UniformGrid::find_overlaps(const Aabb& query, std::vector<std::uint32_t>& o
     const bool misses_grid = x1 < origin_.x - cell_size_ || y1 < origin_.y - cell_size_ ||
                              x0 > grid_max_x || y0 > grid_max_y;
     if (!misses_grid) {
-      visit_cells(x0, y0, x1, y1, [&](std::uint32_t j) {
-        if (boxes_intersect(query, boxes_[j])) out.push_back(j);
-      });
+      const std::int32_t cx0 = cell_x(x0);
+      const std::int32_t cx1 = cell_x(x1);
+      for (std::int32_t y = cell_y(y0), y_end = cell_y(y1); y <= y_end; ++y) {
+        const auto row = static_cast<std::uint32_t>(y * columns_);
+        for (std::uint32_t k = cell_start_[row + cx0]; k < cell_start_[row + cx1 + 1]; ++k) {
+          if (boxes_intersect(query, cell_boxes_[k])) out.push_back(cell_items_[k]);
+        }
+      }
     }
   }
   for (std::uint32_t j : large_) {

@@ -276,41 +276,73 @@ class StepRunner {
     }
   }
 
+  // How close two bodies must be after the first pass to be worth another: within
+  // the push margin of each other.
+  double near_gap(const Body& a, const Body& b) const {
+    return kPushMargin * std::min(std::min(a.half.x, a.half.y), std::min(b.half.x, b.half.y)) +
+           s_.slop;
+  }
+  bool near(const Body& a, const Body& b) const {
+    const double gap = near_gap(a, b);
+    Aabb grown = a.bounds();
+    grown.min -= Vec2{gap, gap};
+    grown.max += Vec2{gap, gap};
+    return boxes_intersect(grown, b.bounds());
+  }
+
+  // Gauss-Seidel passes over the candidate pairs: the first pass visits all of them
+  // and keeps the pairs near enough to matter; later passes visit only those.
+  template <typename Resolve>
+  void resolve_passes(Resolve&& resolve) {
+    auto& near_list = w_.near_candidates_;
+    near_list.clear();
+    for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
+      w_.supported_.assign(w_.bodies.size(), 0);
+      bool moved = false;
+      const bool first = iteration == 0;
+      const std::size_t count = first ? w_.candidates_.size() : near_list.size();
+      for (std::size_t k = 0; k < count; ++k) {
+        const auto c = first ? static_cast<std::uint32_t>(k) : near_list[k];
+        const Candidate& cand = w_.candidates_[c];
+        Body& a = body(cand.lower);
+        Body& b = body(cand.upper);
+        if (first) {
+          if (!near(a, b)) continue;
+          near_list.push_back(c);
+        }
+        moved = resolve(c, a, b) || moved;
+      }
+      if (!moved) break;
+    }
+  }
+
   // Per-axis resolution of box pairs: the lecture's penetration on the axis, pushed
   // apart by penetration plus slop, up if above, down if below.
   void collide_boxes_on(int axis) {
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
     const int other = 1 - axis;
     const Vec2 unit = axis == 0 ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
-    for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
-      w_.supported_.assign(w_.bodies.size(), 0);
-      bool moved = false;
-      for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
-        const Candidate& cand = w_.candidates_[c];
-        Body& a = body(cand.lower);
-        Body& b = body(cand.upper);
-        if (a.shape != Shape::Box || b.shape != Shape::Box) continue;
-        ++w_.counters.box_box_tests;
-        const Aabb ba = a.bounds();
-        const Aabb bb = b.bounds();
-        if (!boxes_intersect(ba, bb)) continue;
-        // Touching on the other axis only (side by side): that axis resolves it.
-        const double across = std::min(component(ba.max, other), component(bb.max, other)) -
-                              std::max(component(ba.min, other), component(bb.min, other));
-        if (across <= 0.5 * s_.slop) continue;
-        const double ca = component(a.position, axis);
-        const double cb = component(b.position, axis);
-        const double depth =
-            axis_penetration(ca, component(a.half, axis), cb, component(b.half, axis));
-        // Resolve on this axis only if it is the shallower one. Otherwise a box that
-        // sank a little into a floor tile would be thrown sideways by the tile's
-        // width (catching on seams), or lifted by a neighbour's height.
-        if (depth > across) continue;
-        const Vec2 n = (cb >= ca) ? unit : -unit;  // from a toward b
-        moved = separate(c, a, b, n, depth) || moved;
-      }
-      if (!moved) break;
-    }
+    resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
+      if (a.shape != Shape::Box || b.shape != Shape::Box) return false;
+      ++w_.counters.box_box_tests;
+      const Aabb ba = a.bounds();
+      const Aabb bb = b.bounds();
+      if (!boxes_intersect(ba, bb)) return false;
+      // Touching on the other axis only (side by side): that axis resolves it.
+      const double across = std::min(component(ba.max, other), component(bb.max, other)) -
+                            std::max(component(ba.min, other), component(bb.min, other));
+      if (across <= 0.5 * s_.slop) return false;
+      const double ca = component(a.position, axis);
+      const double cb = component(b.position, axis);
+      const double depth =
+          axis_penetration(ca, component(a.half, axis), cb, component(b.half, axis));
+      // Resolve on this axis only if it is the shallower one. Otherwise a box that
+      // sank a little into a floor tile would be thrown sideways by the tile's
+      // width (catching on seams), or lifted by a neighbour's height.
+      if (depth > across) return false;
+      const Vec2 n = (cb >= ca) ? unit : -unit;  // from a toward b
+      return separate(c, a, b, n, depth);
+    });
   }
 
   // The X phase: boxes on X, then every pair with a circle along its normal (a
@@ -318,32 +350,24 @@ class StepRunner {
   void collide_on_x() {
     if (any_active_box_) collide_boxes_on(0);
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
-    for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
-      w_.supported_.assign(w_.bodies.size(), 0);
-      bool moved = false;
-      for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
-        const Candidate& cand = w_.candidates_[c];
-        Body& a = body(cand.lower);
-        Body& b = body(cand.upper);
-        Contact contact;
-        if (a.shape == Shape::Circle && b.shape == Shape::Circle) {
-          ++w_.counters.circle_circle_tests;
-          contact = collide_circles(a.position, a.radius, b.position, b.radius);
-        } else if (a.shape == Shape::Circle) {
-          ++w_.counters.circle_box_tests;
-          contact = collide_circle_box(a.position, a.radius, b.bounds());
-        } else if (b.shape == Shape::Circle) {
-          ++w_.counters.circle_box_tests;
-          contact = collide_circle_box(b.position, b.radius, a.bounds());
-          contact.normal = -contact.normal;
-        } else {
-          continue;
-        }
-        if (!contact.colliding) continue;
-        moved = separate(c, a, b, contact.normal, contact.penetration) || moved;
+    resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
+      Contact contact;
+      if (a.shape == Shape::Circle && b.shape == Shape::Circle) {
+        ++w_.counters.circle_circle_tests;
+        contact = collide_circles(a.position, a.radius, b.position, b.radius);
+      } else if (a.shape == Shape::Circle) {
+        ++w_.counters.circle_box_tests;
+        contact = collide_circle_box(a.position, a.radius, b.bounds());
+      } else if (b.shape == Shape::Circle) {
+        ++w_.counters.circle_box_tests;
+        contact = collide_circle_box(b.position, b.radius, a.bounds());
+        contact.normal = -contact.normal;
+      } else {
+        return false;
       }
-      if (!moved) break;
-    }
+      if (!contact.colliding) return false;
+      return separate(c, a, b, contact.normal, contact.penetration);
+    });
   }
 
   // Pushes a and b apart along n (from a toward b) by depth plus slop, split by
@@ -408,7 +432,8 @@ class StepRunner {
       const double closing = dot(b.velocity - a.velocity, contacts[i].normal);
       const double e = mix_restitution(a.restitution, b.restitution);
       w_.contact_targets_[i] = (closing < 0.0 && -closing >= rest_speed_) ? -e * closing : 0.0;
-      w_.contact_warm_[i] = s_.warm_starting ? a.warm_impulse(cand.upper, b.generation) : 0.0;
+      w_.contact_warm_[i] =
+          s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
       if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
     }
     cancel_velocity_into_corrections();
@@ -466,15 +491,15 @@ class StepRunner {
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
   void remember_impulses() {
-    for (std::uint32_t slot : w_.active_) body(slot).warm_count = 0;
+    for (std::uint32_t slot : w_.active_) w_.warm[slot].count = 0;
     const auto& contacts = w_.contacts_;
     for (std::size_t i = 0; i < contacts.size(); ++i) {
       const double total = w_.contact_impulses_[i];
       if (total <= 0.0) continue;
       const Candidate& cand = w_.candidates_[contacts[i].candidate];
-      Body& a = body(cand.lower);
-      if (a.warm_count < Body::kWarmSlots) {
-        a.warm[a.warm_count++] = {cand.upper, body(cand.upper).generation, total};
+      WarmImpulses& kept = w_.warm[cand.lower];
+      if (kept.count < WarmImpulses::kSlots) {
+        kept.entries[kept.count++] = {cand.upper, body(cand.upper).generation, total};
       }
     }
   }

@@ -61,8 +61,10 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
   } else {
     index = static_cast<std::uint32_t>(bodies.size());
     bodies.emplace_back();
+    warm.emplace_back();
   }
   Body& b = bodies[index];
+  warm[index].count = 0;
   const std::uint32_t generation = b.generation + 1;
   b = Body{};
   b.generation = generation;

@@ -10,41 +10,47 @@
 
 namespace phys {
 
-struct Body {
-  Vec2 position{};
-  Vec2 velocity{};
-  Vec2 acceleration{};
-  Vec2 half{};          // half extents of the bounding box (a circle's: radius, radius)
-  double radius = 0.0;  // circles
-  double mass = 0.0;
-  double inv_mass = 0.0;  // 0: static, or immovable
-  double restitution = 0.0;
-  Vec2 friction{};
-  double still_time = 0.0;  // seconds it has stayed near still_anchor
-  Vec2 still_anchor{};
-  Vec2 correction{};  // how far penetration resolution moved it this sub-step
-  // Last sub-step's contact impulses toward the bodies it supported (warm start).
-  struct WarmImpulse {
+// Last sub-step's contact impulses of a body toward the bodies above it in the
+// processing order (warm start), kept apart from Body so the hot loops stay small.
+struct WarmImpulses {
+  struct Entry {
     std::uint32_t partner;
     std::uint32_t generation;
     double impulse;
   };
-  static constexpr std::uint8_t kWarmSlots = 8;
-  WarmImpulse warm[kWarmSlots]{};
-  std::uint8_t warm_count = 0;
-  double warm_impulse(std::uint32_t partner, std::uint32_t partner_generation) const {
-    for (std::uint8_t i = 0; i < warm_count; ++i) {
-      if (warm[i].partner == partner && warm[i].generation == partner_generation) {
-        return warm[i].impulse;
+  static constexpr std::uint8_t kSlots = 8;
+  Entry entries[kSlots]{};
+  std::uint8_t count = 0;
+  double find(std::uint32_t partner, std::uint32_t partner_generation) const {
+    for (std::uint8_t i = 0; i < count; ++i) {
+      if (entries[i].partner == partner && entries[i].generation == partner_generation) {
+        return entries[i].impulse;
       }
     }
     return 0.0;
   }
-  std::uint32_t generation = 0;
+};
+
+struct Body {
+  // Hot: read by every pass over the contacts (the first cache line and a half).
+  Vec2 position{};
+  Vec2 half{};  // half extents of the bounding box (a circle's: radius, radius)
+  Vec2 velocity{};
+  double radius = 0.0;    // circles
+  double inv_mass = 0.0;  // 0: static, or immovable
+  Vec2 correction{};      // how far penetration resolution moved it this sub-step
   Shape shape = Shape::Box;
   Motion motion = Motion::Dynamic;
   bool alive = false;
   bool awake = true;
+  std::uint32_t generation = 0;
+  // Cold: read once a step or less.
+  Vec2 acceleration{};
+  double mass = 0.0;
+  double restitution = 0.0;
+  Vec2 friction{};
+  double still_time = 0.0;  // seconds it has stayed near still_anchor
+  Vec2 still_anchor{};
 
   Aabb bounds() const { return {position - half, position + half}; }
   bool is_dynamic() const { return motion == Motion::Dynamic; }
@@ -84,6 +90,7 @@ class WorldImpl {
   StepProfile profile;
   std::uint64_t steps = 0;
   std::vector<Body> bodies;
+  std::vector<WarmImpulses> warm;  // per slot
 
  private:
   friend class StepRunner;
@@ -117,6 +124,7 @@ class WorldImpl {
   std::vector<Vec2> step_velocity_;      // velocity at the end of the free motion
   std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
   std::vector<std::uint32_t> to_wake_;
+  std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
   std::vector<double> contact_targets_;
   std::vector<double> contact_impulses_;

@@ -45,8 +45,6 @@ class UniformGrid {
  private:
   std::int32_t cell_x(double x) const;
   std::int32_t cell_y(double y) const;
-  template <typename Visit>
-  void visit_cells(double x0, double y0, double x1, double y1, Visit&& visit) const;
 
   std::vector<Aabb> boxes_;
   double cell_size_ = 1.0;
@@ -57,9 +55,14 @@ class UniformGrid {
   std::int32_t rows_ = 0;
   std::vector<std::uint32_t> cell_start_;  // columns*rows + 1 offsets into cell_items_
   std::vector<std::uint32_t> cell_items_;  // box indices, grouped by cell, ascending
-  std::vector<std::uint32_t> cell_of_;     // per box: its cell, or UINT32_MAX if large
-  std::vector<std::uint32_t> large_;       // boxes too big for the cells, ascending
+  std::vector<Aabb> cell_boxes_;           // the boxes in cell_items_ order (locality)
+  mutable std::vector<BodyPair> unsorted_;
+  mutable std::vector<std::uint32_t> group_start_;
+  std::vector<std::uint32_t> cell_of_;  // per box: its cell, or UINT32_MAX if large
+  std::vector<std::uint32_t> large_;    // boxes too big for the cells, ascending
   mutable std::vector<std::uint32_t> scratch_;
+  std::vector<double> extents_;
+  std::vector<std::uint32_t> fill_;
 };
 
 }  // namespace phys
