@@ -118,6 +118,8 @@ Contact collide_circle_box(Vec2 center, double radius, const Aabb& box) {
   return contact;
 }
 
+double mix_contact_friction(double a, double b) { return std::sqrt(a * b); }
+
 bool apply_restitution(Vec2& v1, double inv_mass1, Vec2& v2, double inv_mass2, Vec2 n,
                        double restitution, double rest_speed) {
   const double inv_sum = inv_mass1 + inv_mass2;

@@ -243,6 +243,7 @@ class StepRunner {
       double first_t = kInfinity;
       double level = 0.0;
       double restitution = 0.0;
+      std::uint32_t hit_body = kNone;
       for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
         const Candidate& cand = w_.candidates_[c];
         if (!cand.fixed) break;  // fixed candidates come first
@@ -256,16 +257,35 @@ class StepRunner {
           first_t = *t;
           level = target;
           restitution = mix_restitution(b.restitution, o.restitution);
+          hit_body = cand.upper;
         }
       }
       if (!(first_t < kInfinity)) return;
       ++w_.counters.swept_hits;
       // Bounce at the time of impact and spend the rest of the step going back.
       const double v_hit = path.velocity(first_t);
+      // A sleeping body struck by a swept move wakes: harder than a resting contact
+      // presses when struck from above, at all from the side or below.
+      if (body(hit_body).is_dynamic()) {
+        const bool from_above =
+            axis == 1 && dot(up_, Vec2{0.0, path.x0 > level ? 1.0 : -1.0}) > 0.0;
+        if (std::fabs(v_hit) > (from_above ? rest_speed_ : s_.sleep_speed)) {
+          w_.to_wake_.push_back(hit_body);
+        }
+      }
       const double v_out = std::fabs(v_hit) < rest_speed_ ? 0.0 : -restitution * v_hit;
       const double left = path.h - first_t;
-      if (v_out == 0.0) {  // resting contact: stay where it touched
-        path = {path.integrator, level, 0.0, 0.0, 0.0, left, level, 0.0};
+      if (v_out == 0.0) {
+        // Resting contact: stay where it touched, a few ulps inside so the contact
+        // is surely found, and keep the approach velocity: the restitution phase
+        // removes it with an impulse, which is what contact friction is bounded by.
+        const double inside = path.x0 > level ? -kInfinity : kInfinity;
+        double touching = level;
+        for (int ulp = 0; ulp < 4; ++ulp) touching = std::nextafter(touching, inside);
+        // The velocity kept is the free motion's at the end of the step: all that
+        // acceleration pressed into the support over the step, not just until impact.
+        const double pressed = (path.v1 > 0.0) == (v_hit > 0.0) ? path.v1 : v_hit;
+        path = {path.integrator, touching, pressed, 0.0, 0.0, left, touching, pressed};
         return;
       }
       const AxisMotion rest =
@@ -397,8 +417,11 @@ class StepRunner {
     if (depth == 0.0 && !(push > 0.0)) return false;
     a.position -= n * (push * wa);
     b.position += n * (push * wb);
-    a.correction -= n * (push * wa);
-    b.correction += n * (push * wb);
+    // Only pushes against something immovable (a static or sleeping body, or a
+    // supported one) may cancel velocity below; a push shared by two free bodies
+    // is the restitution phase's to turn into equal and opposite impulses.
+    if (wa == 1.0) a.correction -= n * push;
+    if (wb == 1.0) b.correction += n * push;
     ++w_.counters.contacts;
     return depth > 0.0;
   }
@@ -425,6 +448,8 @@ class StepRunner {
     w_.contact_targets_.resize(contacts.size());
     w_.contact_impulses_.assign(contacts.size(), 0.0);
     w_.contact_warm_.resize(contacts.size());
+    w_.contact_tangent_impulses_.assign(contacts.size(), 0.0);
+    w_.contact_mu_.resize(contacts.size());
     for (std::size_t i = 0; i < contacts.size(); ++i) {
       const Candidate& cand = w_.candidates_[contacts[i].candidate];
       const Body& a = body(cand.lower);
@@ -432,6 +457,7 @@ class StepRunner {
       const double closing = dot(b.velocity - a.velocity, contacts[i].normal);
       const double e = mix_restitution(a.restitution, b.restitution);
       w_.contact_targets_[i] = (closing < 0.0 && -closing >= rest_speed_) ? -e * closing : 0.0;
+      w_.contact_mu_[i] = mix_contact_friction(a.contact_friction, b.contact_friction);
       w_.contact_warm_[i] =
           s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
       if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
@@ -474,19 +500,41 @@ class StepRunner {
           a.velocity -= n * (total * wa);
           if (!cand.fixed) b.velocity += n * (total * wb);
           changed = true;
+          if (w_.contact_mu_[i] > 0.0) apply_contact_friction(i, a, b, wa, wb);
           continue;
         }
         const double wanted = std::max(total + (w_.contact_targets_[i] - closing) / (wa + wb), 0.0);
         const double impulse = wanted - total;
-        if (impulse == 0.0) continue;
-        total = wanted;
-        a.velocity -= n * (impulse * wa);
-        if (!cand.fixed) b.velocity += n * (impulse * wb);
-        changed = changed || std::fabs(impulse) > 1.0e-12;
+        if (impulse != 0.0) {
+          total = wanted;
+          a.velocity -= n * (impulse * wa);
+          if (!cand.fixed) b.velocity += n * (impulse * wb);
+          changed = changed || std::fabs(impulse) > 1.0e-12;
+        }
+        if (w_.contact_mu_[i] > 0.0) changed = apply_contact_friction(i, a, b, wa, wb) || changed;
       }
       if (!changed && iteration > 0) break;
     }
     if (s_.warm_starting) remember_impulses();
+  }
+
+  // Coulomb friction: the tangential impulse accumulated on a contact stays within
+  // mu times its normal impulse (a contact that pushes nothing holds nothing).
+  bool apply_contact_friction(std::size_t i, Body& a, Body& b, double wa, double wb) {
+    const Candidate& cand = w_.candidates_[w_.contacts_[i].candidate];
+    const Vec2 n = w_.contacts_[i].normal;
+    const Vec2 t{-n.y, n.x};
+    const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
+    const double sliding = dot(vb - a.velocity, t);
+    const double limit = w_.contact_mu_[i] * w_.contact_impulses_[i];
+    double& total = w_.contact_tangent_impulses_[i];
+    const double wanted = std::clamp(total - sliding / (wa + wb), -limit, limit);
+    const double impulse = wanted - total;
+    if (impulse == 0.0) return false;
+    total = wanted;
+    a.velocity -= t * (impulse * wa);
+    if (!cand.fixed) b.velocity += t * (impulse * wb);
+    return std::fabs(impulse) > 1.0e-12;
   }
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
@@ -504,19 +552,22 @@ class StepRunner {
     }
   }
 
-  // A body pushed back out of a penetration this sub-step loses the velocity that
-  // drove it in, up to correction / h, but gains none along the push. Without this a
+  // A body pushed back out of a penetration by something immovable loses the
+  // velocity that drove it in, up to correction / h, but gains none along the push. Without this a
   // body jammed against others (a row pressed to a wall) keeps the velocity the
   // contact iterations could not remove: it is put back in place every step while
   // its velocity grows, and the pile never comes to rest.
   void cancel_velocity_into_corrections() {
+    const double per_second = 1.0 / h_;
     for (std::uint32_t slot : w_.active_) {
       Body& b = body(slot);
-      const double pushed = length(b.correction);
-      if (pushed == 0.0) continue;
-      const Vec2 u = b.correction * (1.0 / pushed);
-      const double into = dot(b.velocity, u);
-      if (into < 0.0) b.velocity += u * std::min(-into, pushed / h_);
+      // Per axis, so that a push up from a floor cannot turn into sideways motion.
+      for (int axis = 0; axis < 2; ++axis) {
+        const double pushed = component(b.correction, axis);
+        double& v = component(b.velocity, axis);
+        if (pushed > 0.0 && v < 0.0) v = std::min(0.0, v + pushed * per_second);
+        if (pushed < 0.0 && v > 0.0) v = std::max(0.0, v + pushed * per_second);
+      }
     }
   }
 

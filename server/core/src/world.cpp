@@ -35,7 +35,8 @@ BodyDefError WorldImpl::check(const BodyDef& def) const {
   if (!std::isfinite(def.restitution) || def.restitution < 0.0 || def.restitution > 1.0) {
     return BodyDefError::BadRestitution;
   }
-  if (!is_finite(def.friction) || def.friction.x < 0.0 || def.friction.y < 0.0) {
+  if (!is_finite(def.friction) || def.friction.x < 0.0 || def.friction.y < 0.0 ||
+      !std::isfinite(def.contact_friction) || def.contact_friction < 0.0) {
     return BodyDefError::BadFriction;
   }
   if (settings.has_bounds) {
@@ -76,6 +77,7 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
   b.half = def.shape == Shape::Circle ? Vec2{def.radius, def.radius} : def.half_extents;
   b.restitution = def.restitution;
   b.friction = def.friction;
+  b.contact_friction = def.contact_friction;
   if (def.motion == Motion::Dynamic) {
     b.velocity = def.velocity;
     b.acceleration = def.acceleration;
@@ -163,6 +165,7 @@ BodyState WorldImpl::state_of(std::uint32_t index) const {
   s.mass = b.mass;
   s.restitution = b.restitution;
   s.friction = b.friction;
+  s.contact_friction = b.contact_friction;
   s.awake = b.is_dynamic() && b.awake;
   return s;
 }

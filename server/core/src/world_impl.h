@@ -49,6 +49,7 @@ struct Body {
   double mass = 0.0;
   double restitution = 0.0;
   Vec2 friction{};
+  double contact_friction = 0.0;
   double still_time = 0.0;  // seconds it has stayed near still_anchor
   Vec2 still_anchor{};
 
@@ -129,6 +130,8 @@ class WorldImpl {
   std::vector<double> contact_targets_;
   std::vector<double> contact_impulses_;
   std::vector<double> contact_warm_;
+  std::vector<double> contact_tangent_impulses_;
+  std::vector<double> contact_mu_;
   std::vector<std::uint8_t> sleep_ready_;
   std::vector<std::uint32_t> island_parent_;
 };

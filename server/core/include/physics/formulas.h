@@ -60,7 +60,9 @@ Contact collide_circle_box(Vec2 center, double radius, const Aabb& box);
 bool apply_restitution(Vec2& v1, double inv_mass1, Vec2& v2, double inv_mass2, Vec2 n,
                        double restitution, double rest_speed);
 
-// Material mixing in one place: restitution max(a, b).
+// Material mixing in one place, as Box2D does: restitution max(a, b), contact
+// friction sqrt(a * b).
 constexpr double mix_restitution(double a, double b) { return a > b ? a : b; }
+double mix_contact_friction(double a, double b);
 
 }  // namespace phys
