@@ -471,7 +471,6 @@ class StepRunner {
         Body& a = body(cand.lower);
         Body& b = body(cand.upper);
         const Vec2 n = contacts[i].normal;
-        const double up = dot(n, up_);
         double wa = a.inv_mass;
         double wb = cand.fixed ? 0.0 : b.inv_mass;
         if (shock_) {
