@@ -24,6 +24,9 @@ constexpr double kSupportCosine = 0.5;
 constexpr int kMaxHitsPerMove = 4;
 // Candidate boxes grow by this fraction of a body's smaller half extent.
 constexpr double kPushMargin = 0.1;
+// Pairs are found with boxes grown by this fraction more, and reused while every
+// body stays inside its grown box.
+constexpr double kFatMargin = 0.1;
 
 double component(const Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
 double& component(Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
@@ -75,6 +78,8 @@ class StepRunner {
     }
     w_.contacts_.clear();
     w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
+    w_.contact_normal_.resize(w_.candidates_.size());
+    w_.contact_support_.resize(w_.candidates_.size());
     move(1);
     if (any_active_box_) collide_boxes_on(1);
     move(0);
@@ -107,8 +112,12 @@ class StepRunner {
     auto& keys = w_.sort_keys_;
     keys.resize(order.size());
     for (std::size_t p = 0; p < order.size(); ++p) keys[p] = dot(body(order[p]).position, up_);
-    const auto before = [&](double ka, std::uint32_t a, double kb, std::uint32_t b) {
-      return ka < kb || (ka == kb && a < b);
+    // Heights within the slop are ties, broken by slot: a row of boxes at one height
+    // keeps its order although rounding moves them by 1e-16 (and the candidate pairs,
+    // grouped by position in this order, can then be reused).
+    const double tie = s_.slop;
+    const auto before = [tie](double ka, std::uint32_t a, double kb, std::uint32_t b) {
+      return ka < kb - tie || (ka <= kb + tie && a < b);
     };
     std::size_t moves = 0;
     const std::size_t budget = 8 * order.size() + 64;
@@ -125,6 +134,7 @@ class StepRunner {
       keys[q] = key;
       order[q] = slot;
     }
+    order_changed_ = moves > 0;
     if (moves > budget) {  // far from sorted (first step, a shuffle): sort outright
       std::vector<std::pair<double, std::uint32_t>> keyed(order.size());
       for (std::size_t p = 0; p < order.size(); ++p) {
@@ -147,11 +157,13 @@ class StepRunner {
     w_.step_displacement_.resize(n);
     bool any_friction = false;
     any_active_box_ = false;
+    any_active_circle_ = false;
     for (std::size_t p = 0; p < n; ++p) {
       Body& b = body(w_.active_[p]);
       b.correction = {};
       any_friction = any_friction || b.friction.x != 0.0 || b.friction.y != 0.0;
       any_active_box_ = any_active_box_ || b.shape == Shape::Box;
+      any_active_circle_ = any_active_circle_ || b.shape == Shape::Circle;
       const Vec2 a = gravity_on_ ? b.acceleration + s_.gravity : b.acceleration;
       const AxisMotion mx =
           integrate_axis(s_.integrator, b.position.x, b.velocity.x, a.x, b.friction.x, h_);
@@ -178,7 +190,9 @@ class StepRunner {
   // move in it, so the pairs hold for both axis moves.
   void find_candidates() {
     const std::size_t n = w_.active_.size();
-    w_.active_boxes_.resize(n);
+    auto& needed = w_.active_boxes_;
+    needed.resize(n);
+    bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
     for (std::size_t p = 0; p < n; ++p) {
       const Body& b = body(w_.active_[p]);
       const Vec2 d = w_.step_displacement_[p];
@@ -189,9 +203,27 @@ class StepRunner {
       Aabb box = b.bounds();
       box.min -= margin;
       box.max += margin;
-      w_.active_boxes_[p] = box;
+      needed[p] = box;
+      if (all_inside) {
+        const Aabb& fat = w_.fat_boxes_[p];
+        all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
+                     box.max.y <= fat.max.y;
+      }
     }
-    w_.active_grid_.build(w_.active_boxes_);
+    // Every body still inside the box its pairs were found with, in the same order:
+    // those pairs are still a superset of the ones that can touch (Box2D's fat boxes).
+    if (all_inside) {
+      ++w_.counters.broadphase_reuses;
+      return;
+    }
+    auto& fat = w_.fat_boxes_;
+    fat.resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      const Body& b = body(w_.active_[p]);
+      const double extra = kFatMargin * std::min(b.half.x, b.half.y);
+      fat[p] = {needed[p].min - Vec2{extra, extra}, needed[p].max + Vec2{extra, extra}};
+    }
+    w_.active_grid_.build(fat);
     w_.active_grid_.find_pairs(w_.active_pairs_);
 
     w_.candidates_.clear();
@@ -200,7 +232,7 @@ class StepRunner {
     for (std::uint32_t p = 0; p < n; ++p) {
       w_.first_candidate_[p] = static_cast<std::uint32_t>(w_.candidates_.size());
       if (w_.fixed_grid_.size() > 0) {
-        w_.fixed_grid_.find_overlaps(w_.active_boxes_[p], w_.overlaps_);
+        w_.fixed_grid_.find_overlaps(fat[p], w_.overlaps_);
         for (std::uint32_t f : w_.overlaps_) {
           w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], true});
         }
@@ -211,6 +243,7 @@ class StepRunner {
       }
     }
     w_.first_candidate_[n] = static_cast<std::uint32_t>(w_.candidates_.size());
+    w_.candidates_valid_ = true;
   }
 
   // Move every awake body along one axis. Against static and sleeping bodies the
@@ -369,6 +402,7 @@ class StepRunner {
   // circle's normal needs no axis split).
   void collide_on_x() {
     if (any_active_box_) collide_boxes_on(0);
+    if (!any_active_circle_ && !(any_active_box_ && w_.fixed_circles_ > 0)) return;
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
     resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
       Contact contact;
@@ -426,25 +460,26 @@ class StepRunner {
     return depth > 0.0;
   }
 
+  // Marks candidate c as a contact with normal n; the restitution phase gathers
+  // the marked candidates in candidate order (so no sort is needed).
   void record_contact(std::uint32_t c, Vec2 n, double up) {
-    std::uint32_t& slot = w_.contact_of_candidate_[c];
-    if (slot == kNone) {
-      slot = static_cast<std::uint32_t>(w_.contacts_.size());
-      w_.contacts_.push_back({c, n, false});
-    }
-    w_.contacts_[slot].normal = n;
-    w_.contacts_[slot].support = std::fabs(up) > kSupportCosine;
+    w_.contact_of_candidate_[c] = 1;
+    w_.contact_normal_[c] = n;
+    w_.contact_support_[c] = std::fabs(up) > kSupportCosine;
   }
 
   // The velocity component along each contact's normal is reflected and scaled by
   // the restitution (zeroed below the rest speed), impulses split by inverse mass.
   void restitution() {
     auto& contacts = w_.contacts_;
+    contacts.clear();
+    for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
+      if (w_.contact_of_candidate_[c] != kNone) {
+        contacts.push_back({c, w_.contact_normal_[c], w_.contact_support_[c] != 0});
+      }
+    }
     if (contacts.empty()) return;
     ++w_.counters.restitution_passes;
-    std::sort(contacts.begin(), contacts.end(), [](const ContactRecord& x, const ContactRecord& y) {
-      return x.candidate < y.candidate;
-    });
     w_.contact_targets_.resize(contacts.size());
     w_.contact_impulses_.assign(contacts.size(), 0.0);
     w_.contact_warm_.resize(contacts.size());
@@ -666,6 +701,8 @@ class StepRunner {
   double rest_speed_;
   bool shock_;
   bool any_active_box_ = false;
+  bool any_active_circle_ = false;
+  bool order_changed_ = true;
 };
 
 void WorldImpl::step(double dt) {

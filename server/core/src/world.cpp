@@ -137,6 +137,7 @@ void WorldImpl::rebuild_lists() {
   active_.clear();
   fixed_.clear();
   fixed_boxes_.clear();
+  fixed_circles_ = 0;
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
     if (!b.alive) continue;
@@ -145,10 +146,12 @@ void WorldImpl::rebuild_lists() {
     } else {
       fixed_.push_back(i);
       fixed_boxes_.push_back(b.bounds());
+      fixed_circles_ += b.shape == Shape::Circle ? 1 : 0;
     }
   }
   fixed_grid_.build(fixed_boxes_);
   lists_dirty_ = false;
+  candidates_valid_ = false;
 }
 
 BodyState WorldImpl::state_of(std::uint32_t index) const {

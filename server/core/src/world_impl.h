@@ -111,16 +111,21 @@ class WorldImpl {
   UniformGrid fixed_grid_;
   UniformGrid active_grid_;
   std::vector<Aabb> fixed_boxes_;
+  std::size_t fixed_circles_ = 0;  // circles among the static and sleeping bodies
 
   // Per-step scratch, kept to avoid allocating every step.
-  std::vector<Aabb> active_boxes_;
+  std::vector<Aabb> active_boxes_;  // what each awake body may reach this sub-step
+  std::vector<Aabb> fat_boxes_;     // the boxes the current candidates were found with
+  bool candidates_valid_ = false;
   std::vector<BodyPair> active_pairs_;
   std::vector<std::uint32_t> overlaps_;
   std::vector<Candidate> candidates_;
   std::vector<std::uint32_t> first_candidate_;     // per active position: CSR offsets
   std::vector<std::uint32_t> position_in_active_;  // slot -> position in active_
   std::vector<ContactRecord> contacts_;
-  std::vector<std::uint32_t> contact_of_candidate_;
+  std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
+  std::vector<Vec2> contact_normal_;                 // per candidate, when marked
+  std::vector<std::uint8_t> contact_support_;
   std::vector<std::uint8_t> supported_;
   std::vector<Vec2> step_velocity_;      // velocity at the end of the free motion
   std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step

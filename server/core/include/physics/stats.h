@@ -16,8 +16,9 @@ struct StageCounters {
   std::uint64_t box_box_tests = 0;      // narrowphase box-box tests
   std::uint64_t circle_circle_tests = 0;
   std::uint64_t circle_box_tests = 0;
-  std::uint64_t contacts = 0;    // overlapping pairs resolved
-  std::uint64_t swept_hits = 0;  // time-of-impact stops against static bodies
+  std::uint64_t contacts = 0;           // overlapping pairs resolved
+  std::uint64_t swept_hits = 0;         // time-of-impact stops against static bodies
+  std::uint64_t broadphase_reuses = 0;  // sub-steps that reused the last candidate pairs
   std::uint64_t restitution_passes = 0;
   std::uint64_t sleeping_bodies_skipped = 0;
   std::uint64_t wakes = 0;         // sleeping bodies woken by a hit
