@@ -2,6 +2,8 @@
 // A scene as plain C++: what the server and physics-sim build a World from. The
 // file format is proto/scene.proto in Protobuf text format; this header does not
 // expose Protobuf, so the core and its users never see it.
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -42,6 +44,18 @@ struct SceneError {
 
 using SceneResult = std::variant<SceneDef, SceneError>;
 
+// Limits that keep a hostile scene from using unbounded memory: the file is refused
+// before it is read when larger, and the body count (grids included) is computed
+// and refused before any body is made.
+inline constexpr std::uintmax_t kMaxSceneFileBytes = 16u << 20;
+inline constexpr std::int64_t kMaxSceneBodies = 1 << 20;
+// Positions are refused beyond this distance from the origin on either axis: far
+// out, a double still resolves about 2e-9 m, but nothing we test goes there.
+inline constexpr double kMaxCoordinate = 1.0e7;
+// The tick rate is in (0, kMaxTickRate] and steps per frame in [1, kMaxStepsPerFrame].
+inline constexpr double kMaxTickRate = 1000.0;
+inline constexpr std::int64_t kMaxStepsPerFrame = 1000;
+
 // Reads and checks a .textproto scene file.
 SceneResult load_scene_file(const std::filesystem::path& path);
 // Parses and checks scene text; `origin` names it in errors (a file name).
@@ -51,6 +65,11 @@ const SceneDef& default_scene();
 std::string_view default_scene_text();
 
 // A world holding the scene's bodies, in the scene's order (ids ascend with it).
+// The scene must be one the loader accepted (or hold equally valid values): a body
+// the core still refuses is a programmer error, reported by std::invalid_argument.
 phys::World build_world(const SceneDef& scene);
+
+// The fixed step of the scene: 1 / tick_rate.
+double fixed_dt(const SceneDef& scene);
 
 }  // namespace scene

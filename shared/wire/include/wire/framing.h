@@ -16,19 +16,24 @@ namespace wire {
 
 inline constexpr std::size_t kDefaultMaxMessageBytes = 1u << 20;  // 1 MiB
 
+// Appends a base-128 varint (1 to 10 bytes), as the length prefix is written.
+void append_varint_prefix(std::uint64_t value, std::string& out);
+
 // Appends varint(size) + the serialized message to `out`.
 void append_frame(const google::protobuf::MessageLite& message, std::string& out);
 std::string encode_frame(const google::protobuf::MessageLite& message);
 
 enum class FrameStatus {
-  NeedMore,  // no whole frame buffered yet
-  Frame,     // `frame` holds one message's bytes
-  TooLarge,  // the length prefix is over the maximum: the stream is unusable
-  BadPrefix, // the varint is longer than 10 bytes or overflows 64 bits
+  NeedMore,   // no whole frame buffered yet
+  Frame,      // `frame` holds one message's bytes
+  TooLarge,   // the length prefix is over the maximum: the stream is unusable
+  BadPrefix,  // the varint is longer than 10 bytes or overflows 64 bits
 };
 
-// Incremental reader for a byte stream: feed what arrived, take frames out. It
-// never holds more than max_message_bytes plus one prefix of buffered data.
+// Incremental reader for a byte stream: feed what arrived, take frames out. The
+// limit is checked on the length prefix, before the body is waited for, so a
+// caller that feeds chunks of at most C bytes and calls next() until it stops
+// returning Frame never holds more than max_message_bytes + 10 + C bytes.
 class FrameReader {
  public:
   explicit FrameReader(std::size_t max_message_bytes = kDefaultMaxMessageBytes);

@@ -1,0 +1,158 @@
+// physics-bench: named scenes over a grid of settings, on ours and on the peers
+// that this build links, printed as CSV (stdout or --csv), with a human summary and
+// the per-phase profile on stderr. See docs/ACCURACY.md.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "catalog.h"
+#include "report.h"
+#include "runner.h"
+
+namespace {
+
+std::optional<phys::Integrator> integrator_from_string(const std::string& name) {
+  for (phys::Integrator integrator :
+       {phys::Integrator::ExplicitEuler, phys::Integrator::SemiImplicitEuler,
+        phys::Integrator::Exact}) {
+    if (name == phys::to_string(integrator)) return integrator;
+  }
+  return std::nullopt;
+}
+
+bool selected(const std::string& name, const std::vector<std::string>& patterns) {
+  return std::any_of(patterns.begin(), patterns.end(), [&](const std::string& pattern) {
+    if (pattern == "all") return true;
+    // "rain" picks rain-16000; "stages" every stages-* scene.
+    return name == pattern || name.rfind(pattern + "-", 0) == 0;
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"physics-bench: speed against error, ours and the peers in one run"};
+  std::vector<std::string> scene_names{"all"};
+  std::vector<std::string> engine_names{"ours", "box2d", "chipmunk"};
+  std::vector<std::string> integrator_names{phys::to_string(phys::Integrator::ExplicitEuler),
+                                            phys::to_string(phys::Integrator::SemiImplicitEuler),
+                                            phys::to_string(phys::Integrator::Exact)};
+  std::vector<int> substeps{1, 2, 4, 8};
+  std::vector<int> iterations{1, 2, 4, 8};
+  std::string sleep = "auto";
+  std::string csv_path;
+  std::string ratios_path;
+  bench::Mode mode;
+  bench::GridConfig grid;
+  bool list = false;
+
+  app.add_option("--scenes", scene_names,
+                 "Scenes, or prefixes of them (rain, stages, friction-dtk), or all")
+      ->delimiter(',');
+  app.add_option("--engines", engine_names, "Engines: ours, box2d, chipmunk")->delimiter(',');
+  app.add_option("--integrators", integrator_names,
+                 "Our integrators: explicit-euler, semi-implicit-euler, exact")
+      ->delimiter(',');
+  app.add_option("--substeps", substeps, "Our substep counts")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 64));
+  app.add_option("--iterations", iterations, "Our position iterations")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 64));
+  app.add_option("--sleep", sleep,
+                 "Sleeping on all engines: on, off, both, or auto (both where it matters)")
+      ->check(CLI::IsMember({"on", "off", "both", "auto"}));
+  app.add_flag("--quick", mode.quick, "Fewer steps on the long scenes (a run of a few minutes)");
+  app.add_option("--rain-count", mode.rain_count, "Circles in the rain scene")
+      ->check(CLI::Range(1, 1000000));
+  app.add_flag("--full-grid", grid.full_grid_on_large,
+               "Run the whole settings grid on the large scenes too (slow)");
+  app.add_flag("--peers-everywhere", grid.peers_on_all_scenes,
+               "Run the peers on every scene, not only rain and pyramid");
+  app.add_option("--csv", csv_path, "Write the CSV here instead of stdout");
+  app.add_option("--ratios", ratios_path, "Write peer/ours time ratios (CSV) here");
+  app.add_flag("--list", list, "List the scenes and exit");
+  CLI11_PARSE(app, argc, argv);
+
+  const std::vector<bench::SceneEntry> catalog = bench::scene_catalog(mode);
+  if (list) {
+    for (const bench::SceneEntry& entry : catalog) std::cout << entry.name << '\n';
+    return 0;
+  }
+  std::vector<bench::SceneEntry> scenes;
+  for (const bench::SceneEntry& entry : catalog) {
+    if (selected(entry.name, scene_names)) scenes.push_back(entry);
+  }
+  if (scenes.empty()) {
+    std::cerr << "physics-bench: no scene matches --scenes (see --list)\n";
+    return 2;
+  }
+  for (const std::string& name : engine_names) {
+    const auto kind = bench::engine_from_string(name);
+    if (!kind) {
+      std::cerr << "physics-bench: unknown engine '" << name << "' (ours, box2d, chipmunk)\n";
+      return 2;
+    }
+    if (!bench::engine_available(*kind)) {
+      std::cerr << "physics-bench: " << name
+                << " is not built in (not found at configure time); skipped\n";
+      continue;
+    }
+    grid.engines.push_back(*kind);
+  }
+  for (const std::string& name : integrator_names) {
+    const auto integrator = integrator_from_string(name);
+    if (!integrator) {
+      std::cerr << "physics-bench: unknown integrator '" << name << "'\n";
+      return 2;
+    }
+    grid.integrators.push_back(*integrator);
+  }
+  grid.substeps = substeps;
+  grid.iterations = iterations;
+  if (sleep == "on") grid.sleep_modes = {true};
+  if (sleep == "off") grid.sleep_modes = {false};
+  if (sleep == "both") grid.sleep_modes = {true, false};
+
+  std::ofstream csv_file;
+  if (!csv_path.empty()) {
+    csv_file.open(csv_path);
+    if (!csv_file) {
+      std::cerr << "physics-bench: cannot write " << csv_path << '\n';
+      return 1;
+    }
+  }
+  std::ostream& csv = csv_path.empty() ? std::cout : csv_file;
+  if (csv_path.empty() && std::find(grid.engines.begin(), grid.engines.end(),
+                                    bench::EngineKind::Chipmunk) != grid.engines.end()) {
+    std::cerr << "physics-bench: Debian's Chipmunk prints a banner on stdout; use --csv FILE "
+                 "for a clean CSV\n";
+  }
+  bench::write_csv_header(csv);
+  std::vector<bench::RunRow> rows;
+  try {
+    bench::run_grid(scenes, mode, grid, [&](const bench::RunRow& row) {
+      bench::write_csv_row(csv, row);
+      bench::write_summary(std::cerr, row);
+      rows.push_back(row);
+    });
+  } catch (const std::exception& error) {
+    std::cerr << "physics-bench: " << error.what() << '\n';
+    return 1;
+  }
+  if (!ratios_path.empty()) {
+    std::ofstream ratios(ratios_path);
+    if (!ratios) {
+      std::cerr << "physics-bench: cannot write " << ratios_path << '\n';
+      return 1;
+    }
+    bench::write_ratios(ratios, rows);
+  } else {
+    std::cerr << "\npeer time / our time (same run):\n";
+    bench::write_ratios(std::cerr, rows);
+  }
+  return 0;
+}

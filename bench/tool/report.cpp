@@ -1,0 +1,106 @@
+#include "report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace bench {
+namespace {
+
+std::string number(double value) {
+  if (std::isnan(value)) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+std::string count(long value) { return value < 0 ? "" : std::to_string(value); }
+
+void write_ratio(std::ostream& out, const RunRow& ours, const RunRow& peer, const char* window,
+                 double ours_ms, double peer_ms) {
+  if (std::isnan(ours_ms) || std::isnan(peer_ms)) return;
+  out << ours.scene << ',' << (ours.sleeping ? "on" : "off") << ',' << window << ','
+      << number(ours_ms) << ',' << to_string(peer.engine) << ',' << number(peer_ms) << ','
+      << number(peer_ms / ours_ms) << ',' << number(ours.measures.max_overlap) << ','
+      << number(peer.measures.max_overlap) << ',' << number(ours.measures.top_drift) << ','
+      << number(peer.measures.top_drift) << '\n';
+}
+
+}  // namespace
+
+void write_csv_header(std::ostream& out) {
+  out << "scene,engine,integrator,substeps,iterations,sleeping,default,bodies,steps,"
+         "ms_median,ms_mean,ms_first,ms_last,cpu_ms_mean,cpu_ms_first,cpu_ms_last,error_name,error,"
+         "max_overlap,top_drift,"
+         "energy_drift,escaped,non_finite,awake_end,prof_integrate_ms,prof_broadphase_ms,"
+         "prof_narrowphase_ms,prof_resolve_ms,prof_sleep_ms,notes\n";
+}
+
+void write_csv_row(std::ostream& out, const RunRow& row) {
+  const Measures& m = row.measures;
+  out << row.scene << ',' << to_string(row.engine) << ',' << row.integrator << ',' << row.substeps
+      << ',' << row.iterations << ',' << (row.sleeping ? "on" : "off") << ','
+      << (row.default_setting ? "yes" : "no") << ',' << row.bodies << ',' << row.steps << ','
+      << number(row.ms_median) << ',' << number(row.ms_mean) << ',' << number(row.ms_first) << ','
+      << number(row.ms_last) << ',' << number(row.cpu_ms_mean) << ',' << number(row.cpu_ms_first)
+      << ',' << number(row.cpu_ms_last) << ',' << m.error_name << ',' << number(m.error) << ','
+      << number(m.max_overlap) << ',' << number(m.top_drift) << ',' << number(m.energy_drift) << ','
+      << count(m.escaped) << ',' << count(m.non_finite) << ',' << row.awake_end << ',';
+  if (row.has_profile) {
+    const phys::StepProfile& p = row.profile_mean;
+    out << number(p.integrate * 1e3) << ',' << number(p.broadphase * 1e3) << ','
+        << number(p.narrowphase * 1e3) << ',' << number(p.resolve * 1e3) << ','
+        << number(p.sleep * 1e3) << ',';
+  } else {
+    out << ",,,,,";
+  }
+  out << m.notes << '\n';
+  out.flush();
+}
+
+void write_ratios(std::ostream& out, const std::vector<RunRow>& rows) {
+  out << "scene,sleeping,window,ours_ms,peer,peer_ms,peer_over_ours,ours_overlap,peer_overlap,"
+         "ours_top_drift,peer_top_drift\n";
+  for (const RunRow& ours : rows) {
+    if (ours.engine != EngineKind::Ours || !ours.default_setting) continue;
+    for (const RunRow& peer : rows) {
+      if (peer.engine == EngineKind::Ours || peer.scene != ours.scene ||
+          peer.sleeping != ours.sleeping) {
+        continue;
+      }
+      write_ratio(out, ours, peer, "wall_median", ours.ms_median, peer.ms_median);
+      write_ratio(out, ours, peer, "wall_mean", ours.ms_mean, peer.ms_mean);
+      write_ratio(out, ours, peer, "cpu_mean", ours.cpu_ms_mean, peer.cpu_ms_mean);
+      write_ratio(out, ours, peer, "wall_first_window", ours.ms_first, peer.ms_first);
+      write_ratio(out, ours, peer, "cpu_first_window", ours.cpu_ms_first, peer.cpu_ms_first);
+      write_ratio(out, ours, peer, "wall_last_window", ours.ms_last, peer.ms_last);
+      write_ratio(out, ours, peer, "cpu_last_window", ours.cpu_ms_last, peer.cpu_ms_last);
+    }
+  }
+  out.flush();
+}
+
+void write_summary(std::ostream& out, const RunRow& row) {
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "%-22s %-8s %-17s sub=%d it=%-5s sleep=%-3s median=%.4g ms mean=%.4g ms "
+                "cpu=%.4g ms first=%s last=%s %s=%s",
+                row.scene.c_str(), std::string(to_string(row.engine)).c_str(),
+                row.integrator.c_str(), row.substeps, row.iterations.c_str(),
+                row.sleeping ? "on" : "off", row.ms_median, row.ms_mean, row.cpu_ms_mean,
+                number(row.ms_first).c_str(), number(row.ms_last).c_str(),
+                row.measures.error_name.c_str(), number(row.measures.error).c_str());
+  out << text << '\n';
+  if (row.has_profile) {
+    const phys::StepProfile& p = row.profile_mean;
+    std::snprintf(text, sizeof text,
+                  "    profile ms/step: integrate %.4f  broadphase %.4f  narrowphase %.4f  "
+                  "resolve %.4f  sleep %.4f  total %.4f",
+                  p.integrate * 1e3, p.broadphase * 1e3, p.narrowphase * 1e3, p.resolve * 1e3,
+                  p.sleep * 1e3, p.total * 1e3);
+    out << text << '\n';
+  }
+  out.flush();
+}
+
+}  // namespace bench

@@ -1,0 +1,65 @@
+#pragma once
+// Runs scenes on engines over a grid of settings, one row per run.
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "catalog.h"
+#include "engine.h"
+#include "observers.h"
+#include "physics/settings.h"
+
+namespace bench {
+
+struct OursSetting {
+  phys::Integrator integrator = phys::Integrator::Exact;
+  int substeps = 1;
+  int iterations = 4;
+};
+
+struct RunRow {
+  std::string scene;
+  EngineKind engine = EngineKind::Ours;
+  std::string integrator;  // ours: the phys::Integrator; peers: "peer"
+  int substeps = 1;
+  std::string iterations;
+  bool sleeping = true;
+  bool default_setting = false;  // ours at the server's defaults
+  std::size_t bodies = 0;
+  int steps = 0;
+  double ms_median = 0.0;
+  double ms_mean = 0.0;
+  double ms_first = Measures::kNone;  // median over the scene's first window
+  double ms_last = Measures::kNone;   // median over its last window
+  // Thread CPU time per step (mean), which other processes on a shared machine
+  // disturb much less than wall time: the figure the ratios prefer.
+  double cpu_ms_mean = 0.0;
+  double cpu_ms_first = Measures::kNone;
+  double cpu_ms_last = Measures::kNone;
+  std::size_t awake_end = 0;
+  Measures measures;
+  phys::StepProfile profile_mean{};  // seconds per step, ours only
+  bool has_profile = false;
+};
+
+struct GridConfig {
+  std::vector<EngineKind> engines;
+  std::vector<phys::Integrator> integrators;
+  std::vector<int> substeps;
+  std::vector<int> iterations;
+  // Empty: each scene's own choice (both for scenes where sleeping matters, on
+  // otherwise). Otherwise these modes for every scene.
+  std::vector<bool> sleep_modes;
+  bool full_grid_on_large = false;
+  bool peers_on_all_scenes = false;
+};
+
+// Runs one scene on one engine with one setting.
+RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engine,
+                const OursSetting& setting, bool sleeping);
+
+// Runs the grid over the given scenes, handing each row to `emit` as it completes.
+void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const GridConfig& config,
+              const std::function<void(const RunRow&)>& emit);
+
+}  // namespace bench

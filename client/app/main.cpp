@@ -1,0 +1,143 @@
+// physics-client: connects to a physics-server, sends accelerations for its own
+// body and prints one line per snapshot; --bots N runs N clients as a load test.
+// Exit codes: 0 done, 1 bad flags, 2 could not connect or refused, 3 the session
+// ended early (the server dropped us or closed).
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "client/client.h"
+#include "client/load.h"
+#include "pattern.h"
+#include "print.h"
+
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr int kExitConnect = 2;
+constexpr int kExitLost = 3;
+
+struct Options {
+  client::ClientConfig client;
+  std::vector<double> accel;
+  std::uint64_t ticks = 0;  // 0: until the server ends the session
+  bool json = false;
+  int bots = 0;
+  double duration_seconds = 5.0;
+  int connect_timeout_ms = 5000;
+};
+
+int run_single(const Options& options) {
+  client::Client connection(options.client);
+  if (!connection.connect(std::chrono::milliseconds(options.connect_timeout_ms))) {
+    fmt::print(stderr, "physics-client: cannot join {}:{}: {}\n", options.client.host,
+               options.client.port, connection.last_error().to_string());
+    return kExitConnect;
+  }
+  const client::Welcome& welcome = connection.welcome();
+  fmt::print(stderr, "{}\n", client_app::format_welcome(welcome, false));
+  if (options.json) fmt::print("{}\n", client_app::format_welcome(welcome, true));
+
+  client_app::AccelerationPattern pattern;
+  if (options.accel.size() == 2)
+    pattern.constant = client::Vec2{options.accel[0], options.accel[1]};
+
+  // The first input names the tick after the one we joined at; after that each
+  // snapshot of tick T is answered with the input for T + 1 (in lockstep the server
+  // waits for it, in real time it holds until the next one).
+  std::uint64_t next_input_tick = welcome.current_tick + 1;
+  const client::Vec2 first = pattern.at(next_input_tick);
+  connection.send_input(next_input_tick, first.x, first.y);
+  // Without a snapshot for this long the server is presumed gone.
+  const auto snapshot_timeout =
+      std::max(2000ms, std::chrono::milliseconds(static_cast<long>(4000.0 / welcome.tick_rate)));
+  std::uint64_t printed = 0;
+  while (options.ticks == 0 || printed < options.ticks) {
+    auto snapshot = connection.next_snapshot(snapshot_timeout);
+    if (!snapshot) {
+      const std::string why = connection.state() == client::ConnectionState::Connected
+                                  ? fmt::format("no snapshot for {} ms", snapshot_timeout.count())
+                                  : connection.last_error().to_string();
+      fmt::print(stderr, "physics-client: session ended after {} snapshots: {}\n", printed, why);
+      return kExitLost;
+    }
+    fmt::print("{}\n", client_app::format_snapshot(*snapshot, options.json));
+    std::fflush(stdout);
+    ++printed;
+    while (auto error = connection.next_error(0ms)) {
+      fmt::print(stderr, "physics-client: server error {}: {}\n", client::to_string(error->code),
+                 error->message);
+    }
+    if (snapshot->tick + 1 > next_input_tick) {
+      next_input_tick = snapshot->tick + 1;
+      const client::Vec2 acceleration = pattern.at(next_input_tick);
+      if (!connection.send_input(next_input_tick, acceleration.x, acceleration.y)) {
+        fmt::print(stderr, "physics-client: {}\n", connection.last_error().to_string());
+        return kExitLost;
+      }
+    }
+  }
+  connection.disconnect("physics-client done");
+  return 0;
+}
+
+int run_bots(const Options& options) {
+  client::LoadConfig load;
+  load.client = options.client;
+  load.bots = options.bots;
+  load.duration = std::chrono::milliseconds(static_cast<long>(options.duration_seconds * 1000.0));
+  load.connect_timeout = std::chrono::milliseconds(options.connect_timeout_ms);
+  const client::LoadReport report = client::run_load(load);
+  fmt::print("{}\n", client_app::format_load_report(report, options.json));
+  if (report.bots_connected == 0) {
+    fmt::print(stderr, "physics-client: no bot could join\n");
+    return kExitConnect;
+  }
+  return report.bots_connected == report.bots_requested ? 0 : kExitLost;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"physics-client: joins a physics-server, steers its own body, prints snapshots"};
+  Options options;
+  app.add_option("--host", options.client.host, "Server address")->capture_default_str();
+  app.add_option("--port", options.client.port, "Server port")->capture_default_str();
+  app.add_option("--token", options.client.token, "Access token, when the server wants one");
+  app.add_option("--name", options.client.name, "Name shown in the server's log")
+      ->capture_default_str();
+  app.add_option("--accel", options.accel,
+                 "Constant acceleration X,Y in m/s^2 (default: a circle of 5 m/s^2 every 120 "
+                 "ticks)")
+      ->delimiter(',')
+      ->expected(2);
+  app.add_option("--ticks", options.ticks, "Snapshots to print before leaving (0: no limit)")
+      ->capture_default_str();
+  app.add_flag("--json", options.json, "Print JSON lines instead of text");
+  app.add_option("--bots", options.bots,
+                 "Load mode: run this many clients, each sending an input every tick, and "
+                 "report latency and bandwidth")
+      ->check(CLI::Range(1, 4096));
+  app.add_option("--duration", options.duration_seconds, "Load mode: seconds to measure")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  app.add_option("--connect-timeout-ms", options.connect_timeout_ms,
+                 "How long to wait for the connection and the Welcome")
+      ->check(CLI::Range(1, 600000))
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+
+  for (const double value : options.accel) {
+    if (!std::isfinite(value)) {
+      fmt::print(stderr, "physics-client: --accel must be finite numbers\n");
+      return 1;
+    }
+  }
+  return options.bots > 0 ? run_bots(options) : run_single(options);
+}

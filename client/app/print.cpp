@@ -1,0 +1,102 @@
+#include "print.h"
+
+#include <fmt/format.h>
+
+namespace client_app {
+namespace {
+
+// JSON strings we emit hold names from the server; escape what JSON requires.
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string format_welcome(const client::Welcome& welcome, bool json) {
+  if (json) {
+    return fmt::format(
+        "{{\"welcome\":{{\"client_id\":{},\"body_id\":{},\"tick_rate\":{},\"current_tick\":{},"
+        "\"bodies\":{},\"lockstep\":{},\"max_acceleration\":{},\"scene\":{}}}}}",
+        welcome.client_id, welcome.body_id, welcome.tick_rate, welcome.current_tick,
+        welcome.bodies.size(), welcome.lockstep, welcome.max_acceleration,
+        json_string(welcome.scene_name));
+  }
+  return fmt::format(
+      "connected: client {} controls body {} in scene '{}' ({} bodies, {} Hz{}, tick {})",
+      welcome.client_id, welcome.body_id, welcome.scene_name, welcome.bodies.size(),
+      welcome.tick_rate, welcome.lockstep ? ", lockstep" : "", welcome.current_tick);
+}
+
+std::string format_snapshot(const client::Snapshot& snapshot, bool json) {
+  const client::BodyState own = snapshot.own.value_or(client::BodyState{});
+  // Doubles are printed in their shortest exact form ({}), so nothing is lost. The
+  // hash is a hex string: JSON numbers past 2^53 lose digits in many parsers.
+  if (json) {
+    return fmt::format(
+        "{{\"tick\":{},\"state_hash\":\"{:016x}\",\"own_body\":{},\"has_own\":{},\"x\":{},"
+        "\"y\":{},\"vx\":{},\"vy\":{},\"has_applied_input\":{},\"last_applied_input_tick\":{},"
+        "\"bodies\":{}}}",
+        snapshot.tick, snapshot.state_hash, own.body_id, snapshot.own.has_value(), own.position.x,
+        own.position.y, own.velocity.x, own.velocity.y, snapshot.has_applied_input,
+        snapshot.last_applied_input_tick, snapshot.bodies.size());
+  }
+  return fmt::format("tick {} pos ({:.6f}, {:.6f}) vel ({:.6f}, {:.6f}) hash {:016x}",
+                     snapshot.tick, own.position.x, own.position.y, own.velocity.x, own.velocity.y,
+                     snapshot.state_hash);
+}
+
+std::string format_load_report(const client::LoadReport& report, bool json) {
+  if (json) {
+    return fmt::format(
+        "{{\"bots\":{},\"connected\":{},\"seconds\":{:.3f},\"latency_samples\":{},"
+        "\"latency_median_ms\":{:.3f},\"latency_p99_ms\":{:.3f},\"latency_max_ms\":{:.3f},"
+        "\"bytes_per_second_mean\":{:.0f},\"bytes_per_second_min\":{:.0f},"
+        "\"bytes_per_second_max\":{:.0f},\"snapshots_per_second\":{:.2f},\"inputs_sent\":{},"
+        "\"inputs_unanswered\":{},\"snapshots_dropped\":{},\"failures\":{}}}",
+        report.bots_requested, report.bots_connected, report.seconds, report.latency_samples,
+        report.latency_median_ms, report.latency_p99_ms, report.latency_max_ms,
+        report.bytes_per_second_mean, report.bytes_per_second_min, report.bytes_per_second_max,
+        report.snapshots_per_second_mean, report.inputs_sent, report.inputs_unanswered,
+        report.snapshots_dropped, report.failures.size());
+  }
+  std::string text = fmt::format(
+      "bots {} (connected {}) over {:.2f} s\n"
+      "input -> snapshot latency: median {:.3f} ms, p99 {:.3f} ms, max {:.3f} ms ({} samples)\n"
+      "received per client: mean {:.0f} B/s (min {:.0f}, max {:.0f}), {:.2f} snapshots/s\n"
+      "inputs sent {}, unanswered at the end {}, snapshots dropped by client buffer {}",
+      report.bots_requested, report.bots_connected, report.seconds, report.latency_median_ms,
+      report.latency_p99_ms, report.latency_max_ms, report.latency_samples,
+      report.bytes_per_second_mean, report.bytes_per_second_min, report.bytes_per_second_max,
+      report.snapshots_per_second_mean, report.inputs_sent, report.inputs_unanswered,
+      report.snapshots_dropped);
+  for (const auto& failure : report.failures) text += "\n" + failure;
+  return text;
+}
+
+}  // namespace client_app

@@ -1,0 +1,15 @@
+#pragma once
+// The lines physics-client prints: one per snapshot (text or JSON), the Welcome,
+// and the load report.
+#include <string>
+
+#include "client/load.h"
+#include "client/types.h"
+
+namespace client_app {
+
+std::string format_welcome(const client::Welcome& welcome, bool json);
+std::string format_snapshot(const client::Snapshot& snapshot, bool json);
+std::string format_load_report(const client::LoadReport& report, bool json);
+
+}  // namespace client_app

@@ -1,0 +1,54 @@
+#pragma once
+// Load generation: N clients ("bots") in one process, each on its own thread,
+// each sending one input per snapshot it receives, measuring what a player feels:
+// the time from an input leaving to the first snapshot that reflects it, and the
+// bytes per second each client receives.
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "client/client.h"
+
+namespace client {
+
+struct LoadConfig {
+  ClientConfig client;  // each bot's name gets "-<index>" appended
+  int bots = 1;
+  // How long the measurement runs once every bot is connected.
+  std::chrono::milliseconds duration{5000};
+  std::chrono::milliseconds connect_timeout{5000};
+  // Each bot answers snapshot T with an input for tick T + input_lead.
+  std::uint64_t input_lead = 1;
+  // Acceleration magnitude of the bots' circling pattern (m/s^2).
+  double acceleration = 5.0;
+};
+
+struct LoadReport {
+  int bots_requested = 0;
+  int bots_connected = 0;
+  std::vector<std::string> failures;  // one line per bot that failed, and why
+  double seconds = 0.0;               // measured wall time
+  // Input-to-snapshot latency over all bots: an input for tick T counts from when
+  // its bytes were written to the first snapshot with has_applied_input and
+  // last_applied_input_tick >= T.
+  std::size_t latency_samples = 0;
+  double latency_median_ms = 0.0;
+  double latency_p99_ms = 0.0;
+  double latency_max_ms = 0.0;
+  // Bytes received per second per client (wire bytes, prefixes included).
+  double bytes_per_second_mean = 0.0;
+  double bytes_per_second_min = 0.0;
+  double bytes_per_second_max = 0.0;
+  double snapshots_per_second_mean = 0.0;
+  std::uint64_t inputs_sent = 0;
+  std::uint64_t inputs_unanswered = 0;  // sent, but no snapshot reflected them by the end
+  std::uint64_t snapshots_dropped = 0;  // by the clients' own buffer bound
+};
+
+LoadReport run_load(const LoadConfig& config);
+
+// The p-quantile (0..1) of the samples by nearest rank; 0 when empty. Sorts a copy.
+double quantile(std::vector<double> samples, double p);
+
+}  // namespace client

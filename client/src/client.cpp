@@ -1,0 +1,335 @@
+#include "client/client.h"
+
+#include <array>
+#include <asio.hpp>
+#include <utility>
+
+#include "convert.h"
+#include "wire/framing.h"
+
+namespace client {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Buffered errors and pongs are few in a healthy session; the bound only stops a
+// misbehaving server from growing them without limit.
+constexpr std::size_t kMaxBufferedSmallEvents = 256;
+
+std::uint64_t now_ns() {
+  return static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
+          .count());
+}
+
+// Bytes of the base-128 varint that prefixes a frame of `size` bytes.
+std::size_t varint_size(std::size_t size) {
+  std::size_t bytes = 1;
+  for (; size >= 0x80; size >>= 7) ++bytes;
+  return bytes;
+}
+
+}  // namespace
+
+struct Client::Io {
+  explicit Io(std::size_t max_message_bytes) : reader(max_message_bytes) {}
+  asio::io_context context;
+  asio::ip::tcp::socket socket{context};
+  wire::FrameReader reader;
+  std::array<std::uint8_t, 64 * 1024> buffer{};
+  bool connect_done = false;
+  std::error_code connect_error;
+
+  // Runs handlers on this thread until `done()` or the deadline. False on timeout,
+  // or when nothing is left that could make `done()` true.
+  template <class Done>
+  bool run_until(Clock::time_point deadline, Done done) {
+    while (!done()) {
+      if (context.stopped()) context.restart();
+      if (context.run_one_until(deadline) == 0) {
+        if (done()) return true;
+        if (Clock::now() >= deadline || context.stopped()) return false;
+      }
+    }
+    return true;
+  }
+};
+
+std::string ClientError::to_string() const {
+  std::string text = client::to_string(state);
+  if (server) {
+    text += ": ";
+    text += client::to_string(server->code);
+    if (server->code == ErrorCode::Unspecified && server->raw_code != 0) {
+      text += "(" + std::to_string(server->raw_code) + ")";
+    }
+    if (!server->message.empty()) text += ": " + server->message;
+  }
+  if (!detail.empty()) text += " (" + detail + ")";
+  return text;
+}
+
+Client::Client(ClientConfig config) : config_(std::move(config)) {}
+
+Client::~Client() { close_socket(); }
+
+bool Client::connect(std::chrono::milliseconds timeout) {
+  close_socket();
+  io_ = std::make_unique<Io>(config_.max_message_bytes);
+  error_ = {};
+  welcome_ = {};
+  snapshots_.clear();
+  errors_.clear();
+  pongs_.clear();
+  next_sequence_ = 1;
+  state_ = ConnectionState::Connecting;
+  const auto deadline = Clock::now() + timeout;
+
+  std::error_code ec;
+  asio::ip::tcp::resolver resolver(io_->context);
+  const auto endpoints = resolver.resolve(config_.host, std::to_string(config_.port),
+                                          asio::ip::tcp::resolver::numeric_service, ec);
+  if (ec) {
+    fail(ConnectionState::ConnectFailed, "cannot resolve " + config_.host + ": " + ec.message());
+    return false;
+  }
+  asio::async_connect(io_->socket, endpoints,
+                      [io = io_.get()](const std::error_code& error, const auto&) {
+                        io->connect_done = true;
+                        io->connect_error = error;
+                      });
+  if (!io_->run_until(deadline, [this] { return io_->connect_done; })) {
+    fail(ConnectionState::ConnectTimedOut, "no TCP connection to " + config_.host + ":" +
+                                               std::to_string(config_.port) + " within " +
+                                               std::to_string(timeout.count()) + " ms");
+    return false;
+  }
+  if (io_->connect_error) {
+    fail(ConnectionState::ConnectFailed, "cannot connect to " + config_.host + ":" +
+                                             std::to_string(config_.port) + ": " +
+                                             io_->connect_error.message());
+    return false;
+  }
+  // Snapshots are small and must leave at once: no Nagle delay (issue 3).
+  io_->socket.set_option(asio::ip::tcp::no_delay(true), ec);
+
+  state_ = ConnectionState::AwaitingWelcome;
+  if (!send_frame(wire::encode_frame(
+          convert::make_hello(config_.protocol_version, config_.name, config_.token)))) {
+    return false;
+  }
+  start_read();
+  if (!io_->run_until(deadline, [this] { return state_ != ConnectionState::AwaitingWelcome; })) {
+    fail(ConnectionState::WelcomeTimedOut,
+         "no Welcome within " + std::to_string(timeout.count()) + " ms");
+    return false;
+  }
+  return state_ == ConnectionState::Connected;
+}
+
+bool Client::send_input(std::uint64_t tick, double ax, double ay) {
+  if (state_ != ConnectionState::Connected) return false;
+  if (!send_frame(wire::encode_frame(convert::make_input(tick, ax, ay, next_sequence_)))) {
+    return false;
+  }
+  ++next_sequence_;
+  ++stats_.inputs_sent;
+  return true;
+}
+
+bool Client::send_ping(std::uint64_t nonce) {
+  if (state_ != ConnectionState::Connected) return false;
+  return send_frame(wire::encode_frame(convert::make_ping(nonce, now_ns())));
+}
+
+std::optional<Snapshot> Client::next_snapshot(std::chrono::milliseconds timeout) {
+  if (!wait_until(Wait::Snapshot, timeout)) return std::nullopt;
+  Snapshot snapshot = std::move(snapshots_.front());
+  snapshots_.pop_front();
+  return snapshot;
+}
+
+std::optional<Snapshot> Client::newest_snapshot(std::chrono::milliseconds timeout) {
+  // Take in whatever has already arrived, then keep only the newest.
+  if (io_ && state_ == ConnectionState::Connected) {
+    if (io_->context.stopped()) io_->context.restart();
+    io_->context.poll();
+  }
+  if (!wait_until(Wait::Snapshot, timeout)) return std::nullopt;
+  Snapshot snapshot = std::move(snapshots_.back());
+  snapshots_.clear();
+  return snapshot;
+}
+
+std::optional<ServerError> Client::next_error(std::chrono::milliseconds timeout) {
+  if (!wait_until(Wait::Error, timeout)) return std::nullopt;
+  ServerError error = std::move(errors_.front());
+  errors_.pop_front();
+  return error;
+}
+
+std::optional<Pong> Client::next_pong(std::chrono::milliseconds timeout) {
+  if (!wait_until(Wait::Pong, timeout)) return std::nullopt;
+  Pong pong = pongs_.front();
+  pongs_.pop_front();
+  return pong;
+}
+
+void Client::disconnect(const std::string& reason) {
+  if (state_ == ConnectionState::Connected || state_ == ConnectionState::AwaitingWelcome) {
+    send_frame(wire::encode_frame(convert::make_bye(reason)));
+  }
+  close_socket();
+  state_ = ConnectionState::Disconnected;
+  error_ = {};
+}
+
+bool Client::has(Wait what) const {
+  switch (what) {
+    case Wait::Snapshot:
+      return !snapshots_.empty();
+    case Wait::Error:
+      return !errors_.empty();
+    case Wait::Pong:
+      return !pongs_.empty();
+  }
+  return false;
+}
+
+bool Client::wait_until(Wait what, std::chrono::milliseconds timeout) {
+  if (has(what)) return true;
+  if (!io_ || state_ != ConnectionState::Connected) return false;
+  const auto deadline = Clock::now() + timeout;
+  io_->run_until(deadline,
+                 [this, what] { return has(what) || state_ != ConnectionState::Connected; });
+  return has(what);
+}
+
+void Client::start_read() {
+  io_->socket.async_read_some(
+      asio::buffer(io_->buffer), [this](const std::error_code& error, std::size_t count) {
+        if (error == asio::error::operation_aborted) return;
+        if (error) {
+          if (state_ == ConnectionState::Connected || state_ == ConnectionState::AwaitingWelcome) {
+            const bool closed = error == asio::error::eof;
+            fail(ConnectionState::ConnectionLost,
+                 closed ? std::string(state_ == ConnectionState::Connected
+                                          ? "the server closed the connection"
+                                          : "the server closed the connection before Welcome")
+                        : error.message());
+          }
+          return;
+        }
+        on_bytes(count);
+      });
+}
+
+void Client::on_bytes(std::size_t count) {
+  stats_.bytes_received += count;
+  io_->reader.feed(std::span<const std::uint8_t>(io_->buffer.data(), count));
+  std::string frame;
+  for (;;) {
+    switch (io_->reader.next(frame)) {
+      case wire::FrameStatus::NeedMore:
+        start_read();
+        return;
+      case wire::FrameStatus::TooLarge:
+        fail(ConnectionState::ProtocolError,
+             "server frame of " + std::to_string(io_->reader.rejected_length()) +
+                 " bytes is over the limit of " + std::to_string(config_.max_message_bytes));
+        return;
+      case wire::FrameStatus::BadPrefix:
+        fail(ConnectionState::ProtocolError, "server sent a bad length prefix");
+        return;
+      case wire::FrameStatus::Frame:
+        handle_frame(frame);
+        if (is_failure(state_) || state_ == ConnectionState::Disconnected) return;
+        break;
+    }
+  }
+}
+
+void Client::handle_frame(const std::string& frame) {
+  physics::wire::ServerMessage message;
+  if (!message.ParseFromString(frame)) {
+    fail(ConnectionState::ProtocolError, "server sent a message that does not parse");
+    return;
+  }
+  using Kind = physics::wire::ServerMessage::KindCase;
+  switch (message.kind_case()) {
+    case Kind::kWelcome:
+      if (state_ != ConnectionState::AwaitingWelcome) {
+        fail(ConnectionState::ProtocolError, "server sent a second Welcome");
+        return;
+      }
+      welcome_ = convert::from_wire(message.welcome());
+      state_ = ConnectionState::Connected;
+      return;
+    case Kind::kSnapshot: {
+      if (state_ != ConnectionState::Connected) {
+        fail(ConnectionState::ProtocolError, "server sent a Snapshot before Welcome");
+        return;
+      }
+      Snapshot snapshot = convert::from_wire(message.snapshot(), welcome_.body_id);
+      snapshot.received_at = Clock::now();
+      snapshot.wire_bytes = frame.size() + varint_size(frame.size());
+      ++stats_.snapshots_received;
+      if (snapshots_.size() >= config_.max_buffered_snapshots) {
+        snapshots_.pop_front();
+        ++stats_.snapshots_dropped;
+      }
+      snapshots_.push_back(std::move(snapshot));
+      return;
+    }
+    case Kind::kError: {
+      ServerError error = convert::from_wire(message.error());
+      ++stats_.errors_received;
+      if (errors_.size() >= kMaxBufferedSmallEvents) errors_.pop_front();
+      errors_.push_back(error);
+      if (error.fatal) {
+        error_.server = error;
+        fail(state_ == ConnectionState::AwaitingWelcome ? ConnectionState::Refused
+                                                        : ConnectionState::ConnectionLost,
+             "");
+      }
+      return;
+    }
+    case Kind::kPong:
+      if (pongs_.size() >= kMaxBufferedSmallEvents) pongs_.pop_front();
+      pongs_.push_back(convert::from_wire(message.pong()));
+      return;
+    case Kind::KIND_NOT_SET:
+      // A kind newer than this client: ignored, as proto3 intends.
+      return;
+  }
+}
+
+bool Client::send_frame(const std::string& frame) {
+  std::error_code ec;
+  asio::write(io_->socket, asio::buffer(frame), ec);
+  if (ec) {
+    fail(ConnectionState::ConnectionLost, "write failed: " + ec.message());
+    return false;
+  }
+  stats_.bytes_sent += frame.size();
+  return true;
+}
+
+void Client::fail(ConnectionState state, std::string detail) {
+  if (is_failure(state_)) return;  // the first reason is the one that counts
+  state_ = state;
+  error_.state = state;
+  error_.detail = std::move(detail);
+  close_socket();
+}
+
+void Client::close_socket() {
+  if (!io_) return;
+  std::error_code ignored;
+  if (io_->socket.is_open()) {
+    io_->socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+    io_->socket.close(ignored);
+  }
+}
+
+}  // namespace client

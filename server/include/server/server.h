@@ -1,0 +1,129 @@
+#pragma once
+// The authoritative physics server, in-process: construct it (it binds and listens
+// at once, so port() is valid), call run() on a thread of your choice, and stop()
+// from anywhere. physics-server (server/app/) is a thin command line around this.
+// Design, threads, queues and limits: docs/SERVER.md.
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace server {
+
+struct ServerConfig {
+  std::string bind = "127.0.0.1";
+  // 0 picks a free port; port() tells which.
+  std::uint16_t port = 7777;
+  // Ticks per second; 0 takes the scene's tick rate.
+  double tick_rate = 0.0;
+  // At most this many ticks stepped per timer wake-up; 0 takes the scene's.
+  int steps_per_frame = 0;
+  // Lockstep: tick N is stepped only when every joined client has sent an input for
+  // tick N, or lockstep_timeout has passed since the first input for tick N arrived
+  // (then the missing clients' last inputs are reused, and counted). Ticks do not
+  // advance while no client sends inputs, and are not paced by the wall clock.
+  bool lockstep = false;
+  std::chrono::milliseconds lockstep_timeout{250};
+  int max_clients = 64;
+  // When set, a Hello without exactly this access token is refused.
+  std::optional<std::string> token;
+  // A frame whose length prefix is over this is answered with an Error, then closed.
+  std::size_t max_message_bytes = 1u << 20;
+  // Snapshots waiting to be written to one client; past this the oldest unsent one
+  // is dropped (a slow client gets the newest state, not a growing backlog). Above
+  // the scene's steps per frame (6 by default), so that a frame that catches up on
+  // several ticks at once drops nothing for a client that reads.
+  std::size_t max_queued_snapshots = 8;
+  // A client is dropped when nothing arrives from it for this long (clients that
+  // send no inputs send Ping), or when a write to it makes no progress this long.
+  std::chrono::milliseconds idle_timeout{10000};
+  // An Input for a tick beyond current_tick + max_ticks_ahead is refused.
+  std::uint64_t max_ticks_ahead = 120;
+  // After a fatal Error (or on shutdown) a session gets this long to flush before
+  // its socket is closed regardless.
+  std::chrono::milliseconds close_linger{1000};
+  // SO_SNDBUF of each client socket in bytes; 0 keeps the OS default (which grows
+  // to megabytes). Smaller means a slow reader is noticed sooner and costs less
+  // kernel memory; tests of slow clients use it.
+  int socket_send_buffer_bytes = 0;
+  // Install SIGINT/SIGTERM handlers on the server's io_context (physics-server does).
+  bool handle_signals = false;
+};
+
+// Why sessions ended, as counted in ServerStats::dropped.
+enum class DropReason : std::uint8_t {
+  ClientBye,          // the client said Bye
+  Disconnected,       // the peer closed or reset the connection
+  MessageTooLarge,    // a length prefix over max_message_bytes
+  Malformed,          // bytes that do not parse, or a bad varint prefix
+  ProtocolVersion,    // Hello with another protocol version
+  BadToken,           // missing or wrong access token
+  ServerFull,         // max_clients reached
+  NoSpawn,            // no free spawn point for the client's body
+  UnexpectedMessage,  // e.g. Input before Hello, a second Hello
+  Idle,               // nothing received for idle_timeout
+  TooSlow,            // a write made no progress for idle_timeout
+  ShuttingDown,       // the server stopped
+};
+const char* to_string(DropReason reason);
+
+struct ServerStats {
+  std::size_t connected_clients = 0;  // sessions that completed Hello and hold a body
+  std::size_t open_connections = 0;   // every open socket, joined or not
+  std::uint64_t ticks_stepped = 0;
+  std::uint64_t current_tick = 0;  // the last tick stepped
+  std::uint64_t late_inputs = 0;   // applied at the next tick instead
+  std::uint64_t far_future_inputs = 0;
+  std::uint64_t invalid_inputs = 0;  // NaN or infinite
+  std::uint64_t clamped_inputs = 0;  // magnitude over the scene's max_acceleration
+  std::uint64_t lockstep_timeouts = 0;
+  std::uint64_t reused_inputs = 0;      // lockstep: a missing input replaced by the last
+  std::uint64_t dropped_steps = 0;      // backlog the fixed-timestep driver threw away
+  std::uint64_t dropped_snapshots = 0;  // unsent snapshots replaced by newer ones
+  // The most snapshots one session ever held (the one being written included):
+  // never above max_queued_snapshots + 1, however slow the client.
+  std::size_t peak_queued_snapshots = 0;
+  std::uint64_t bytes_sent = 0;
+  std::uint64_t bytes_received = 0;
+  std::uint64_t connections_accepted = 0;
+  std::map<DropReason, std::uint64_t> dropped;  // sessions ended, by reason
+  std::uint64_t last_state_hash = 0;
+  // Wall time of the last tick's step plus snapshot encoding, and the largest seen.
+  double last_tick_seconds = 0.0;
+  double max_tick_seconds = 0.0;
+  double total_tick_seconds = 0.0;  // over all ticks: mean = total / ticks_stepped
+
+  std::uint64_t dropped_total() const;
+};
+
+class Server {
+ public:
+  // Builds the world from the scene and binds + listens. Throws std::system_error
+  // (with the address in the message) if it cannot bind, std::invalid_argument for
+  // a config that makes no sense (tick rate <= 0 or > 10000, max_clients < 1, ...).
+  Server(ServerConfig config, scene::SceneDef scene);
+  ~Server();
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  // The port actually listened on (the chosen one when config.port was 0).
+  std::uint16_t port() const;
+  // Serves until stop(); all sockets and the tick timer run on the calling thread.
+  void run();
+  // Thread-safe and idempotent. Sends ERROR_SHUTTING_DOWN to every client, closes
+  // them (after at most close_linger) and makes run() return.
+  void stop();
+  // A consistent copy, safe from any thread.
+  ServerStats stats() const;
+
+ private:
+  class Impl;
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace server

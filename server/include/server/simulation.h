@@ -1,0 +1,85 @@
+#pragma once
+// The server's tick logic without sockets: the world, the room (who owns which
+// body), every client's inputs, and one tick at a time. The network layer feeds it;
+// tests (and the lockstep integration test, to replay a run in-process) drive it
+// directly. Everything here is deterministic: the state after tick N depends only
+// on the scene, the order clients joined and left between ticks, and the inputs.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "physics/world.h"
+#include "scene/scene.h"
+#include "server/input_buffer.h"
+#include "server/room.h"
+
+namespace server {
+
+struct SimulationOptions {
+  // Ticks per second; 0 takes the scene's. dt = 1 / tick_rate.
+  double tick_rate = 0.0;
+  std::uint64_t max_ticks_ahead = 120;
+};
+
+// Bodies that appeared or vanished since the last take_changes(), for snapshots.
+struct BodyChanges {
+  std::vector<phys::BodyId> added;
+  std::vector<std::uint64_t> removed;  // packed ids
+  bool empty() const { return added.empty() && removed.empty(); }
+};
+
+struct TickResult {
+  std::uint64_t tick = 0;  // the tick just stepped
+  // Joined clients with no input due at this tick, who kept their held input
+  // (in lockstep mode after a timeout, these are the reused inputs).
+  std::vector<ClientId> held_over;
+};
+
+class Simulation {
+ public:
+  explicit Simulation(scene::SceneDef scene, SimulationOptions options = {});
+
+  // Gives the client a body at a free spawn position (see spawn.h). nullopt when
+  // the client already has one or no position is free.
+  std::optional<phys::BodyId> join(ClientId client);
+  bool leave(ClientId client);
+
+  // Checks and files one input of `client` (see check_input). Inputs of clients
+  // not in the room are refused (NotJoined) and never filed.
+  InputCheck submit_input(ClientId client, std::uint64_t tick, phys::Vec2 acceleration);
+
+  // For the lockstep gate: about the next tick (current_tick() + 1).
+  bool all_inputs_present() const;
+  bool any_input_present() const;
+
+  // Applies every client's input due at the next tick to that client's own body
+  // (clients in ascending id order), then steps the world by dt.
+  TickResult step_tick();
+
+  std::uint64_t current_tick() const { return current_tick_; }
+  double dt() const { return dt_; }
+  double tick_rate() const { return tick_rate_; }
+  std::uint64_t max_ticks_ahead() const { return options_.max_ticks_ahead; }
+  const scene::SceneDef& scene() const { return scene_; }
+  const phys::World& world() const { return world_; }
+  const Room& room() const { return room_; }
+  std::optional<phys::BodyId> body_of(ClientId client) const { return room_.body_of(client); }
+  // The client's input state (nullptr for a client not in the room).
+  const ClientInputs* inputs_of(ClientId client) const;
+
+  BodyChanges take_changes();
+
+ private:
+  scene::SceneDef scene_;
+  SimulationOptions options_;
+  double tick_rate_;
+  double dt_;
+  phys::World world_;
+  Room room_;
+  std::map<ClientId, ClientInputs> inputs_;
+  std::uint64_t current_tick_ = 0;
+  BodyChanges changes_;
+};
+
+}  // namespace server

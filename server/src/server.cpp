@@ -1,0 +1,514 @@
+#include "server/server.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+#include "server_impl.h"
+#include "wire/messages.h"
+
+namespace server {
+namespace {
+
+// Connections that have not said Hello yet may exceed max_clients by this many, so
+// that a burst of handshakes is not refused, while a flood of idle sockets is.
+constexpr std::size_t kHandshakeSlack = 64;
+constexpr std::size_t kMaxClientNameBytes = 64;
+constexpr auto kHousekeepingPeriod = std::chrono::milliseconds(100);
+
+void check_config(const ServerConfig& config) {
+  if (config.max_clients < 1) throw std::invalid_argument("max_clients must be at least 1");
+  if (config.max_message_bytes < 64) {
+    throw std::invalid_argument("max_message_bytes must be at least 64");
+  }
+  if (config.max_queued_snapshots < 1) {
+    throw std::invalid_argument("max_queued_snapshots must be at least 1");
+  }
+  if (config.idle_timeout.count() <= 0) throw std::invalid_argument("idle_timeout must be > 0");
+  if (config.lockstep_timeout.count() <= 0) {
+    throw std::invalid_argument("lockstep_timeout must be > 0");
+  }
+  if (config.steps_per_frame < 0 || config.steps_per_frame > 1000) {
+    throw std::invalid_argument("steps_per_frame must be in [0, 1000] (0: the scene's)");
+  }
+  if (config.max_ticks_ahead < 1) throw std::invalid_argument("max_ticks_ahead must be >= 1");
+}
+
+// For the log: a client's name is whatever it sent; keep it printable and short.
+std::string printable_name(const std::string& raw) {
+  std::string name = raw.substr(0, kMaxClientNameBytes);
+  for (char& c : name) {
+    if (c < 0x20 || c == 0x7F) c = '?';
+  }
+  return name;
+}
+
+// Compares without stopping at the first difference, so the time taken does not
+// tell an attacker how much of the token was right.
+bool same_token(const std::string& given, const std::string& expected) {
+  unsigned char difference = given.size() == expected.size() ? 0 : 1;
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    difference |= static_cast<unsigned char>(given[i] ^ expected[i % (expected.size() + 1)]);
+  }
+  return difference == 0;
+}
+
+SimulationOptions simulation_options(const ServerConfig& config) {
+  SimulationOptions options;
+  options.tick_rate = config.tick_rate;
+  options.max_ticks_ahead = config.max_ticks_ahead;
+  return options;
+}
+
+}  // namespace
+
+const char* to_string(DropReason reason) {
+  switch (reason) {
+    case DropReason::ClientBye:
+      return "said bye";
+    case DropReason::Disconnected:
+      return "disconnected";
+    case DropReason::MessageTooLarge:
+      return "message too large";
+    case DropReason::Malformed:
+      return "malformed message";
+    case DropReason::ProtocolVersion:
+      return "wrong protocol version";
+    case DropReason::BadToken:
+      return "bad token";
+    case DropReason::ServerFull:
+      return "server full";
+    case DropReason::NoSpawn:
+      return "no free spawn point";
+    case DropReason::UnexpectedMessage:
+      return "unexpected message";
+    case DropReason::Idle:
+      return "idle (nothing received)";
+    case DropReason::TooSlow:
+      return "too slow (not reading)";
+    case DropReason::ShuttingDown:
+      return "server shutting down";
+  }
+  return "unknown";
+}
+
+std::uint64_t ServerStats::dropped_total() const {
+  std::uint64_t total = 0;
+  for (const auto& [reason, count] : dropped) total += count;
+  return total;
+}
+
+Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
+    : config_((check_config(config), std::move(config))),
+      simulation_(std::move(scene), simulation_options(config_)),
+      acceptor_(io_),
+      tick_timer_(io_),
+      lockstep_timer_(io_),
+      housekeeping_timer_(io_),
+      accept_retry_timer_(io_),
+      gate_(config_.lockstep_timeout) {
+  limits_.max_message_bytes = config_.max_message_bytes;
+  limits_.max_queued_snapshots = config_.max_queued_snapshots;
+  limits_.idle_timeout = config_.idle_timeout;
+  limits_.close_linger = config_.close_linger;
+  limits_.socket_send_buffer_bytes = config_.socket_send_buffer_bytes;
+
+  const std::string where = config_.bind + ":" + std::to_string(config_.port);
+  std::error_code ec;
+  const asio::ip::address address = asio::ip::make_address(config_.bind, ec);
+  if (ec) throw std::system_error(ec, "cannot listen on " + where + ": bad address");
+  const asio::ip::tcp::endpoint endpoint(address, config_.port);
+  acceptor_.open(endpoint.protocol(), ec);
+  if (ec) throw std::system_error(ec, "cannot listen on " + where);
+  acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true), ec);
+  acceptor_.bind(endpoint, ec);
+  if (ec) throw std::system_error(ec, "cannot listen on " + where);
+  acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) throw std::system_error(ec, "cannot listen on " + where);
+  port_ = acceptor_.local_endpoint().port();
+
+  if (config_.handle_signals) {
+    signals_.emplace(io_, SIGINT, SIGTERM);
+    signals_->async_wait([this](std::error_code wait_error, int signal_number) {
+      if (wait_error) return;
+      spdlog::info("signal {} received: shutting down", signal_number);
+      begin_shutdown();
+    });
+  }
+  update_stats([&](ServerStats& s) { s.last_state_hash = simulation_.world().state_hash(); });
+}
+
+Server::Impl::~Impl() {
+  // Sessions hold sockets of io_; drop them before io_ goes.
+  sessions_.clear();
+}
+
+void Server::Impl::run() {
+  asio::post(io_, [this] {
+    if (stopping_) return;
+    do_accept();
+    arm_housekeeping();
+    if (!config_.lockstep) start_fixed_ticks();
+  });
+  io_.run();
+}
+
+void Server::Impl::stop() {
+  asio::post(io_, [this] { begin_shutdown(); });
+}
+
+ServerStats Server::Impl::stats() const {
+  std::lock_guard<std::mutex> lock(stats_mutex_);
+  return stats_;
+}
+
+// ---- connections ----
+
+void Server::Impl::do_accept() {
+  acceptor_.async_accept([this](std::error_code ec, asio::ip::tcp::socket socket) {
+    if (stopping_ || ec == asio::error::operation_aborted) return;
+    if (ec) {
+      // Out of descriptors, typically: wait a little rather than spin on the error.
+      spdlog::warn("accept failed: {}", ec.message());
+      accept_retry_timer_.expires_after(std::chrono::milliseconds(100));
+      accept_retry_timer_.async_wait([this](std::error_code wait_error) {
+        if (!wait_error && !stopping_) do_accept();
+      });
+      return;
+    }
+    const std::uint32_t id = next_client_id_++;
+    auto session = std::make_shared<Session>(std::move(socket), id, *this, limits_);
+    sessions_.emplace(id, session);
+    update_stats([](ServerStats& s) { ++s.connections_accepted; });
+    publish_connection_counts();
+    spdlog::info("connection {} from {}", id, session->peer());
+    session->start();
+    const std::size_t limit = static_cast<std::size_t>(config_.max_clients) + kHandshakeSlack;
+    if (sessions_.size() > limit) {
+      session->close_with_error(physics::wire::ERROR_SERVER_FULL,
+                                "too many open connections (" + std::to_string(limit) + ")",
+                                DropReason::ServerFull);
+    }
+    do_accept();
+  });
+}
+
+void Server::Impl::on_closed(Session& session, DropReason reason) {
+  const std::uint32_t id = session.id();
+  if (session.joined()) {
+    simulation_.leave(id);
+    --joined_count_;
+    spdlog::info("client {} '{}' ({}) left: {}", id, session.name(), session.peer(),
+                 to_string(reason));
+  } else {
+    spdlog::info("connection {} ({}) closed before joining: {}", id, session.peer(),
+                 to_string(reason));
+  }
+  update_stats([&](ServerStats& s) { ++s.dropped[reason]; });
+  sessions_.erase(id);
+  publish_connection_counts();
+  // One client fewer may be all the lockstep gate was waiting for. Posted, because
+  // this can run in the middle of a broadcast.
+  if (config_.lockstep) schedule_lockstep();
+}
+
+void Server::Impl::on_bytes(std::size_t sent, std::size_t received) {
+  update_stats([&](ServerStats& s) {
+    s.bytes_sent += sent;
+    s.bytes_received += received;
+  });
+}
+
+void Server::Impl::on_snapshot_dropped() {
+  update_stats([](ServerStats& s) { ++s.dropped_snapshots; });
+}
+
+void Server::Impl::publish_connection_counts() {
+  update_stats([&](ServerStats& s) {
+    s.connected_clients = joined_count_;
+    s.open_connections = sessions_.size();
+  });
+}
+
+// ---- messages ----
+
+void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& message) {
+  using Kind = physics::wire::ClientMessage::KindCase;
+  switch (message.kind_case()) {
+    case Kind::kHello:
+      on_hello(session, message.hello());
+      return;
+    case Kind::kInput:
+      if (!session.joined()) {
+        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
+                                 "Input before Hello: the first message must be Hello",
+                                 DropReason::UnexpectedMessage);
+        return;
+      }
+      on_input(session, message.input());
+      return;
+    case Kind::kPing: {
+      physics::wire::ServerMessage reply;
+      physics::wire::Pong& pong = *reply.mutable_pong();
+      pong.set_nonce(message.ping().nonce());
+      pong.set_client_time_ns(message.ping().client_time_ns());
+      pong.set_server_tick(simulation_.current_tick());
+      session.send(reply);
+      return;
+    }
+    case Kind::kBye:
+      spdlog::info("client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
+      session.close_now(DropReason::ClientBye);
+      return;
+    case Kind::KIND_NOT_SET:
+      break;
+  }
+  session.close_with_error(physics::wire::ERROR_MALFORMED,
+                           "ClientMessage holds no known message (empty or from a newer "
+                           "protocol)",
+                           DropReason::Malformed);
+}
+
+void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello) {
+  if (session.joined()) {
+    session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
+                             "a second Hello on the same connection",
+                             DropReason::UnexpectedMessage);
+    return;
+  }
+  const std::string name = printable_name(hello.client_name());
+  if (hello.protocol_version() != wire::kProtocolVersion) {
+    session.close_with_error(
+        physics::wire::ERROR_PROTOCOL_VERSION,
+        "client speaks protocol version " + std::to_string(hello.protocol_version()) +
+            ", this server speaks version " + std::to_string(wire::kProtocolVersion),
+        DropReason::ProtocolVersion);
+    return;
+  }
+  if (config_.token && !same_token(hello.access_token(), *config_.token)) {
+    session.close_with_error(physics::wire::ERROR_BAD_TOKEN,
+                             hello.access_token().empty() ? "this server requires an access token"
+                                                          : "wrong access token",
+                             DropReason::BadToken);
+    return;
+  }
+  if (joined_count_ >= static_cast<std::size_t>(config_.max_clients)) {
+    session.close_with_error(
+        physics::wire::ERROR_SERVER_FULL,
+        "server full: " + std::to_string(config_.max_clients) + " clients connected",
+        DropReason::ServerFull);
+    return;
+  }
+  const std::optional<phys::BodyId> body = simulation_.join(session.id());
+  if (!body) {
+    session.close_with_error(physics::wire::ERROR_NO_SPAWN,
+                             "no free spawn position for another body", DropReason::NoSpawn);
+    return;
+  }
+  session.set_joined(name);
+  ++joined_count_;
+  publish_connection_counts();
+  spdlog::info("client {} '{}' ({}) joined at tick {} with body {}", session.id(), name,
+               session.peer(), simulation_.current_tick(), body->packed());
+  session.send(make_welcome(simulation_, session.id(), *body, config_.lockstep));
+}
+
+void Server::Impl::on_input(Session& session, const physics::wire::Input& input) {
+  const InputCheck check =
+      simulation_.submit_input(session.id(), input.tick(), {input.ax(), input.ay()});
+  switch (check.verdict) {
+    case InputVerdict::NonFinite:
+      update_stats([](ServerStats& s) { ++s.invalid_inputs; });
+      session.send(wire::make_error(physics::wire::ERROR_INVALID_INPUT,
+                                    "input for tick " + std::to_string(input.tick()) +
+                                        " has a NaN or infinite acceleration; dropped",
+                                    false));
+      return;
+    case InputVerdict::TooFarAhead:
+      update_stats([](ServerStats& s) { ++s.far_future_inputs; });
+      session.send(wire::make_error(
+          physics::wire::ERROR_TICK_TOO_FAR_AHEAD,
+          "input for tick " + std::to_string(input.tick()) + " is more than " +
+              std::to_string(simulation_.max_ticks_ahead()) + " ticks after the current tick " +
+              std::to_string(simulation_.current_tick()) + "; dropped",
+          false));
+      return;
+    case InputVerdict::NotJoined:
+      return;  // cannot happen: on_message only passes inputs of joined sessions
+    case InputVerdict::Late:
+      update_stats([](ServerStats& s) { ++s.late_inputs; });
+      break;
+    case InputVerdict::OnTime:
+      break;
+  }
+  if (check.clamped) update_stats([](ServerStats& s) { ++s.clamped_inputs; });
+  if (config_.lockstep) schedule_lockstep();
+}
+
+// ---- ticks ----
+
+void Server::Impl::start_fixed_ticks() {
+  phys::FixedTimestepConfig timestep_config;
+  timestep_config.tick_rate_hz = simulation_.tick_rate();
+  timestep_config.max_steps_per_frame =
+      config_.steps_per_frame > 0 ? config_.steps_per_frame : simulation_.scene().steps_per_frame;
+  timestep_.emplace(clock_, timestep_config);
+  next_tick_due_ = clock_.now() + timestep_->period();
+  arm_tick_timer();
+}
+
+void Server::Impl::arm_tick_timer() {
+  tick_timer_.expires_at(next_tick_due_);
+  tick_timer_.async_wait([this](std::error_code ec) {
+    if (ec || stopping_) return;
+    on_tick_timer();
+  });
+}
+
+void Server::Impl::on_tick_timer() {
+  const phys::FrameResult frame = timestep_->frame([this](double) { run_one_tick(); });
+  if (frame.dropped_steps > 0) {
+    update_stats([&](ServerStats& s) { s.dropped_steps += frame.dropped_steps; });
+  }
+  // The next wake-up is the previous one plus a period, never "now + period", so
+  // the timer's own latency does not accumulate into drift.
+  const auto period = timestep_->period();
+  next_tick_due_ += period;
+  const auto now = clock_.now();
+  if (next_tick_due_ < now) {
+    // Fell behind by whole periods (the driver already dropped that backlog): skip
+    // them, keeping the phase, instead of firing once per missed period.
+    const auto behind = now - next_tick_due_;
+    next_tick_due_ += (behind / period + 1) * period;
+  }
+  arm_tick_timer();
+}
+
+void Server::Impl::schedule_lockstep() {
+  // Inputs arrive many to a read; checking the gate in a posted handler, at most
+  // one pending at a time, keeps stepping out of the read loop (see try_lockstep).
+  if (lockstep_check_posted_ || stopping_) return;
+  lockstep_check_posted_ = true;
+  asio::post(io_, [this] {
+    lockstep_check_posted_ = false;
+    try_lockstep();
+  });
+}
+
+void Server::Impl::try_lockstep() {
+  if (stopping_) return;
+  const LockstepGate::Decision decision =
+      gate_.decide(simulation_.all_inputs_present(), simulation_.any_input_present(), clock_.now());
+  if (decision != LockstepGate::Decision::Wait) {
+    const TickResult result = run_one_tick();
+    gate_.stepped();
+    if (decision == LockstepGate::Decision::StepAfterTimeout) {
+      update_stats([&](ServerStats& s) {
+        ++s.lockstep_timeouts;
+        s.reused_inputs += result.held_over.size();
+      });
+    }
+    // One tick per handler: when clients sent many ticks ahead, the write
+    // completions of this tick's snapshots (queued before this post) run before the
+    // next tick, so the sessions' snapshot queues drain instead of dropping.
+    schedule_lockstep();
+    return;
+  }
+  if (const auto deadline = gate_.deadline()) {
+    lockstep_timer_.expires_at(*deadline);
+    lockstep_timer_.async_wait([this](std::error_code ec) {
+      if (!ec) schedule_lockstep();
+    });
+  } else {
+    lockstep_timer_.cancel();
+  }
+}
+
+TickResult Server::Impl::run_one_tick() {
+  const auto started = std::chrono::steady_clock::now();
+  TickResult result = simulation_.step_tick();
+  const auto snapshot =
+      encode_snapshot(simulation_.world(), result.tick, simulation_.take_changes());
+  broadcast(snapshot);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  update_stats([&](ServerStats& s) {
+    ++s.ticks_stepped;
+    s.current_tick = result.tick;
+    s.last_state_hash = snapshot->state_hash;
+    s.last_tick_seconds = seconds;
+    s.total_tick_seconds += seconds;
+    if (seconds > s.max_tick_seconds) s.max_tick_seconds = seconds;
+  });
+  return result;
+}
+
+void Server::Impl::broadcast(const std::shared_ptr<const EncodedSnapshot>& snapshot) {
+  // A copy: a session that turns out too slow closes, and leaves the map, mid-loop.
+  std::vector<std::shared_ptr<Session>> targets;
+  targets.reserve(sessions_.size());
+  for (const auto& [id, session] : sessions_) {
+    if (session->joined() && !session->closing()) targets.push_back(session);
+  }
+  std::size_t peak = 0;
+  for (const auto& session : targets) {
+    const ClientInputs* inputs = simulation_.inputs_of(session->id());
+    if (inputs == nullptr || session->closing()) continue;
+    session->send_snapshot(snapshot, inputs->last_applied_tick(), inputs->has_applied());
+    peak = std::max(peak, session->queued_snapshots());
+  }
+  update_stats(
+      [&](ServerStats& s) { s.peak_queued_snapshots = std::max(s.peak_queued_snapshots, peak); });
+}
+
+// ---- housekeeping and shutdown ----
+
+void Server::Impl::arm_housekeeping() {
+  housekeeping_timer_.expires_after(kHousekeepingPeriod);
+  housekeeping_timer_.async_wait([this](std::error_code ec) {
+    if (ec) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::vector<std::shared_ptr<Session>> all;
+    all.reserve(sessions_.size());
+    for (const auto& [id, session] : sessions_) all.push_back(session);
+    for (const auto& session : all) session->check_deadlines(now);
+    // While stopping, keep going only until every session has closed; then the
+    // io_context runs out of work and run() returns.
+    if (!stopping_ || !sessions_.empty()) arm_housekeeping();
+  });
+}
+
+void Server::Impl::begin_shutdown() {
+  if (stopping_) return;
+  stopping_ = true;
+  spdlog::info("shutting down: closing {} connection(s)", sessions_.size());
+  std::error_code ignored;
+  acceptor_.close(ignored);
+  tick_timer_.cancel();
+  lockstep_timer_.cancel();
+  accept_retry_timer_.cancel();
+  if (signals_) signals_->cancel(ignored);
+  std::vector<std::shared_ptr<Session>> all;
+  for (const auto& [id, session] : sessions_) all.push_back(session);
+  for (const auto& session : all) {
+    session->close_with_error(physics::wire::ERROR_SHUTTING_DOWN, "the server is shutting down",
+                              DropReason::ShuttingDown);
+  }
+  // Make sure the housekeeping timer is running to enforce close_linger.
+  if (!sessions_.empty()) arm_housekeeping();
+}
+
+// ---- the public face ----
+
+Server::Server(ServerConfig config, scene::SceneDef scene)
+    : impl_(std::make_shared<Impl>(std::move(config), std::move(scene))) {}
+Server::~Server() = default;
+std::uint16_t Server::port() const { return impl_->port(); }
+void Server::run() { impl_->run(); }
+void Server::stop() { impl_->stop(); }
+ServerStats Server::stats() const { return impl_->stats(); }
+
+}  // namespace server

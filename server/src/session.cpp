@@ -1,0 +1,241 @@
+#include "session.h"
+
+#include <spdlog/spdlog.h>
+
+#include <utility>
+
+#include "wire/messages.h"
+
+namespace server {
+
+Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& host,
+                 SessionLimits limits)
+    : socket_(std::move(socket)),
+      id_(id),
+      host_(host),
+      limits_(limits),
+      reader_(limits.max_message_bytes),
+      last_received_(clock::now()) {
+  std::error_code ec;
+  // A snapshot must not wait for Nagle's algorithm to gather more bytes.
+  socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+  if (limits_.socket_send_buffer_bytes > 0) {
+    socket_.set_option(asio::socket_base::send_buffer_size(limits_.socket_send_buffer_bytes), ec);
+  }
+  const auto endpoint = socket_.remote_endpoint(ec);
+  peer_ = ec ? std::string("unknown")
+             : endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
+}
+
+void Session::start() { do_read(); }
+
+void Session::do_read() {
+  // One read at a time; none while an Error is still being written before a close,
+  // and after it only to drain what the client still sends (see begin_draining).
+  if (reading_ || closed_ || (closing_ && !draining_)) return;
+  reading_ = true;
+  socket_.async_read_some(asio::buffer(read_buffer_), [self = shared_from_this()](
+                                                          std::error_code ec, std::size_t bytes) {
+    self->reading_ = false;
+    if (self->closed_) return;
+    if (ec) {
+      self->finish(self->closing_ ? self->close_reason_ : DropReason::Disconnected);
+      return;
+    }
+    self->on_read(bytes);
+  });
+}
+
+void Session::on_read(std::size_t bytes) {
+  last_received_ = clock::now();
+  host_.on_bytes(0, bytes);
+  if (!closing_) {
+    reader_.feed(std::span<const std::uint8_t>(read_buffer_.data(), bytes));
+    handle_frames();
+  }
+  do_read();
+}
+
+void Session::begin_draining() {
+  // The Error is written. Closing now with unread bytes in our receive buffer would
+  // send a reset, which can destroy the Error before the client reads it; instead
+  // send FIN and discard input until the client closes (or close_linger passes).
+  draining_ = true;
+  std::error_code ignored;
+  socket_.shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
+  do_read();
+}
+
+void Session::handle_frames() {
+  std::string frame;
+  while (!closing_) {
+    switch (reader_.next(frame)) {
+      case wire::FrameStatus::NeedMore:
+        return;
+      case wire::FrameStatus::TooLarge:
+        close_with_error(physics::wire::ERROR_MESSAGE_TOO_LARGE,
+                         "message of " + std::to_string(reader_.rejected_length()) +
+                             " bytes is over the limit of " +
+                             std::to_string(reader_.max_message_bytes()) + " bytes",
+                         DropReason::MessageTooLarge);
+        return;
+      case wire::FrameStatus::BadPrefix:
+        close_with_error(physics::wire::ERROR_MALFORMED,
+                         "length prefix is not a valid varint (over 10 bytes or 64 bits)",
+                         DropReason::Malformed);
+        return;
+      case wire::FrameStatus::Frame:
+        break;
+    }
+    physics::wire::ClientMessage message;
+    if (!wire::parse_client_message(frame, message)) {
+      close_with_error(
+          physics::wire::ERROR_MALFORMED,
+          "a frame of " + std::to_string(frame.size()) + " bytes does not parse as a ClientMessage",
+          DropReason::Malformed);
+      return;
+    }
+    host_.on_message(*this, message);
+  }
+}
+
+void Session::send(const physics::wire::ServerMessage& message) {
+  if (closing_ || closed_) return;
+  const std::size_t control = queue_.size() - waiting_snapshots_;
+  if (control >= limits_.max_queued_control) {
+    // Pongs and Errors piled up unread: the client does not read what it asks for.
+    close_now(DropReason::TooSlow);
+    return;
+  }
+  Outgoing item;
+  item.bytes = wire::encode_frame(message);
+  enqueue(std::move(item));
+}
+
+void Session::send_snapshot(std::shared_ptr<const EncodedSnapshot> snapshot,
+                            std::uint64_t last_applied_input_tick, bool has_applied_input) {
+  if (closing_ || closed_) return;
+  if (waiting_snapshots_ >= limits_.max_queued_snapshots) drop_oldest_waiting_snapshot();
+  if (closing_) return;
+  Outgoing item;
+  item.snapshot = std::move(snapshot);
+  item.last_applied_input_tick = last_applied_input_tick;
+  item.has_applied_input = has_applied_input;
+  ++waiting_snapshots_;
+  enqueue(std::move(item));
+}
+
+void Session::drop_oldest_waiting_snapshot() {
+  for (auto it = queue_.begin(); it != queue_.end(); ++it) {
+    if (!it->snapshot) continue;
+    carried_changes_ += it->snapshot->changes;
+    queue_.erase(it);
+    --waiting_snapshots_;
+    host_.on_snapshot_dropped();
+    break;
+  }
+  // Carried changes only grow when bodies join or leave while this client reads
+  // nothing; past one message's worth the client is hopelessly behind.
+  if (carried_changes_.size() > limits_.max_message_bytes) close_now(DropReason::TooSlow);
+}
+
+void Session::enqueue(Outgoing item) {
+  queue_.push_back(std::move(item));
+  if (!in_flight_) do_write();
+}
+
+void Session::do_write() {
+  if (in_flight_ || closed_) return;
+  if (queue_.empty()) {
+    if (closing_ && !draining_) begin_draining();
+    return;
+  }
+  in_flight_ = std::make_unique<Outgoing>(std::move(queue_.front()));
+  queue_.pop_front();
+  write_started_ = clock::now();
+  Outgoing& item = *in_flight_;
+  std::size_t count = 1;
+  if (item.snapshot) {
+    --waiting_snapshots_;
+    item.tail = std::exchange(carried_changes_, std::string()) +
+                encode_client_fields(item.last_applied_input_tick, item.has_applied_input);
+    item.bytes = snapshot_frame_header(item.snapshot->shared.size() + item.tail.size());
+    item.buffers[1] = asio::buffer(item.snapshot->shared);
+    item.buffers[2] = asio::buffer(item.tail);
+    count = 3;
+  }
+  item.buffers[0] = asio::buffer(item.bytes);
+  asio::async_write(
+      socket_, std::span<const asio::const_buffer>(item.buffers.data(), count),
+      [self = shared_from_this()](std::error_code ec, std::size_t written) {
+        if (self->closed_) return;
+        self->host_.on_bytes(written, 0);
+        if (ec) {
+          self->finish(self->closing_ ? self->close_reason_ : DropReason::Disconnected);
+          return;
+        }
+        self->in_flight_.reset();
+        self->do_write();
+      });
+}
+
+void Session::close_with_error(physics::wire::ErrorCode code, const std::string& text,
+                               DropReason reason) {
+  if (closing_ || closed_) return;
+  // Waiting snapshots are of no use to a client that is being closed.
+  for (auto it = queue_.begin(); it != queue_.end();) {
+    if (it->snapshot) {
+      it = queue_.erase(it);
+      --waiting_snapshots_;
+    } else {
+      ++it;
+    }
+  }
+  Outgoing item;
+  item.bytes = wire::encode_frame(wire::make_error(code, text, true));
+  closing_ = true;
+  close_reason_ = reason;
+  close_deadline_ = clock::now() + limits_.close_linger;
+  enqueue(std::move(item));
+}
+
+void Session::close_now(DropReason reason) {
+  if (closed_) return;
+  closing_ = true;
+  close_reason_ = reason;
+  finish(reason);
+}
+
+void Session::check_deadlines(clock::time_point now) {
+  if (closed_) return;
+  if (closing_) {
+    if (now >= close_deadline_) finish(close_reason_);
+    return;
+  }
+  if (in_flight_ && now - write_started_ >= limits_.idle_timeout) {
+    // The client has read nothing for idle_timeout: an Error could not reach it.
+    close_now(DropReason::TooSlow);
+    return;
+  }
+  if (now - last_received_ >= limits_.idle_timeout) {
+    close_with_error(physics::wire::ERROR_TOO_SLOW,
+                     "nothing received for " + std::to_string(limits_.idle_timeout.count()) +
+                         " ms (send Ping when there is no input to send)",
+                     DropReason::Idle);
+  }
+}
+
+void Session::finish(DropReason reason) {
+  if (closed_) return;
+  closed_ = true;
+  closing_ = true;
+  std::error_code ignored;
+  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+  socket_.close(ignored);
+  queue_.clear();
+  waiting_snapshots_ = 0;
+  carried_changes_.clear();
+  host_.on_closed(*this, reason);
+}
+
+}  // namespace server

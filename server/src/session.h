@@ -1,0 +1,130 @@
+#pragma once
+// One TCP connection: a read chain (bytes -> FrameReader -> parsed ClientMessage ->
+// host) and one write queue that nothing else writes around. Snapshots in the
+// queue are bounded: past max_queued_snapshots the oldest unsent one is dropped and
+// its body additions/removals are carried into the next one sent. Control messages
+// (Welcome, Error, Pong) are bounded too: a client that lets them pile up is too
+// slow and is dropped. Everything runs on the server's single io_context thread.
+#include <array>
+#include <asio.hpp>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "server/server.h"
+#include "snapshot_encoder.h"
+#include "wire.pb.h"
+#include "wire/framing.h"
+
+namespace server {
+
+class Session;
+
+// What a session reports to its owner (the server).
+class SessionHost {
+ public:
+  virtual void on_message(Session& session, physics::wire::ClientMessage& message) = 0;
+  // Called once, after the socket is closed.
+  virtual void on_closed(Session& session, DropReason reason) = 0;
+  virtual void on_bytes(std::size_t sent, std::size_t received) = 0;
+  virtual void on_snapshot_dropped() = 0;
+
+ protected:
+  ~SessionHost() = default;
+};
+
+struct SessionLimits {
+  std::size_t max_message_bytes = 1u << 20;
+  std::size_t max_queued_snapshots = 4;
+  std::size_t max_queued_control = 256;
+  std::chrono::milliseconds idle_timeout{10000};
+  std::chrono::milliseconds close_linger{1000};
+  int socket_send_buffer_bytes = 0;  // 0: the OS default
+};
+
+class Session : public std::enable_shared_from_this<Session> {
+ public:
+  using clock = std::chrono::steady_clock;
+
+  Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& host, SessionLimits limits);
+
+  void start();
+
+  void send(const physics::wire::ServerMessage& message);
+  void send_snapshot(std::shared_ptr<const EncodedSnapshot> snapshot,
+                     std::uint64_t last_applied_input_tick, bool has_applied_input);
+  // Sends a fatal Error, stops reading, closes once it is written (or after
+  // close_linger at the latest).
+  void close_with_error(physics::wire::ErrorCode code, const std::string& text, DropReason reason);
+  // Closes quietly (Bye, or the peer is gone).
+  void close_now(DropReason reason);
+
+  // Enforces idle_timeout and close_linger; the server calls it periodically.
+  void check_deadlines(clock::time_point now);
+
+  std::uint32_t id() const { return id_; }
+  const std::string& peer() const { return peer_; }
+  bool joined() const { return joined_; }
+  void set_joined(std::string name) {
+    joined_ = true;
+    name_ = std::move(name);
+  }
+  const std::string& name() const { return name_; }
+  bool closing() const { return closing_; }
+  bool closed() const { return closed_; }
+  // Snapshots held: waiting, plus the one being written.
+  std::size_t queued_snapshots() const {
+    return waiting_snapshots_ + (in_flight_ && in_flight_->snapshot ? 1 : 0);
+  }
+  std::size_t queued_messages() const { return queue_.size() + (in_flight_ ? 1 : 0); }
+
+ private:
+  struct Outgoing {
+    std::string bytes;  // a whole frame, or (snapshots) the header built at write time
+    std::shared_ptr<const EncodedSnapshot> snapshot;  // null for control messages
+    std::string tail;  // snapshots: carried changes + this client's fields
+    std::uint64_t last_applied_input_tick = 0;
+    bool has_applied_input = false;
+    // What async_write reads from until it completes: the header, the shared
+    // bytes, the tail. Lives here, in the heap-held in-flight item, so that it stays
+    // put however long the write takes (a local array would die with do_write).
+    std::array<asio::const_buffer, 3> buffers;
+  };
+
+  void do_read();
+  void on_read(std::size_t bytes);
+  void begin_draining();
+  void handle_frames();
+  void enqueue(Outgoing item);
+  void drop_oldest_waiting_snapshot();
+  void do_write();
+  void finish(DropReason reason);
+
+  asio::ip::tcp::socket socket_;
+  std::uint32_t id_;
+  SessionHost& host_;
+  SessionLimits limits_;
+  std::string peer_;
+  std::string name_;
+  wire::FrameReader reader_;
+  std::array<std::uint8_t, 64 * 1024> read_buffer_{};
+  // The item being written is taken out of the queue, so that dropping waiting
+  // items (erasing from the middle of the deque) can never move it.
+  std::unique_ptr<Outgoing> in_flight_;
+  std::deque<Outgoing> queue_;  // waiting to be written
+  bool reading_ = false;
+  bool draining_ = false;              // closing: Error written, FIN sent, discarding input
+  std::size_t waiting_snapshots_ = 0;  // snapshots in queue_
+  std::string carried_changes_;        // from dropped snapshots, for the next one
+  bool joined_ = false;
+  bool closing_ = false;
+  bool closed_ = false;
+  DropReason close_reason_ = DropReason::Disconnected;
+  clock::time_point last_received_;
+  clock::time_point write_started_;
+  clock::time_point close_deadline_;
+};
+
+}  // namespace server

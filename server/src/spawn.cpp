@@ -1,0 +1,76 @@
+#include "server/spawn.h"
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+namespace server {
+namespace {
+
+phys::Vec2 half_size(phys::Shape shape, double radius, phys::Vec2 half_extents) {
+  return shape == phys::Shape::Circle ? phys::Vec2{radius, radius} : half_extents;
+}
+
+bool overlaps(const phys::Aabb& a, const phys::Aabb& b) {
+  // Touching counts as overlapping: a body spawned flush against another would be
+  // in contact from its first step.
+  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y;
+}
+
+bool inside(const phys::Aabb& inner, const phys::Aabb& outer) {
+  return inner.min.x >= outer.min.x && inner.max.x <= outer.max.x && inner.min.y >= outer.min.y &&
+         inner.max.y <= outer.max.y;
+}
+
+// Offsets of ring r, in a fixed order: the 8 compass directions.
+std::array<phys::Vec2, 8> ring_offsets(int ring, phys::Vec2 step) {
+  const double r = static_cast<double>(ring);
+  const double dx = step.x * r;
+  const double dy = step.y * r;
+  return {
+      {{0.0, dy}, {dx, 0.0}, {-dx, 0.0}, {dx, dy}, {-dx, dy}, {0.0, -dy}, {dx, -dy}, {-dx, -dy}}};
+}
+
+}  // namespace
+
+phys::Aabb bounds_of(const phys::BodyState& body) {
+  const phys::Vec2 h = half_size(body.shape, body.radius, body.half_extents);
+  return {body.position - h, body.position + h};
+}
+
+phys::Aabb bounds_of(const phys::BodyDef& body, phys::Vec2 at) {
+  const phys::Vec2 h = half_size(body.shape, body.radius, body.half_extents);
+  return {at - h, at + h};
+}
+
+std::optional<phys::Vec2> find_spawn_position(const scene::SceneDef& scene,
+                                              const phys::World& world) {
+  std::vector<phys::Aabb> occupied;
+  occupied.reserve(world.body_count());
+  world.for_each_body([&](const phys::BodyState& body) { occupied.push_back(bounds_of(body)); });
+
+  const phys::WorldSettings& settings = world.settings();
+  auto is_free = [&](phys::Vec2 at) {
+    const phys::Aabb box = bounds_of(scene.player, at);
+    if (settings.has_bounds && !inside(box, settings.bounds)) return false;
+    return std::none_of(occupied.begin(), occupied.end(),
+                        [&](const phys::Aabb& other) { return overlaps(box, other); });
+  };
+
+  for (const phys::Vec2& point : scene.spawn_points) {
+    if (is_free(point)) return point;
+  }
+  const phys::Vec2 h =
+      half_size(scene.player.shape, scene.player.radius, scene.player.half_extents);
+  const phys::Vec2 step{h.x * 2.5, h.y * 2.5};
+  for (int ring = 1; ring <= kSpawnRings; ++ring) {
+    for (const phys::Vec2& point : scene.spawn_points) {
+      for (const phys::Vec2& offset : ring_offsets(ring, step)) {
+        if (is_free(point + offset)) return point + offset;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace server

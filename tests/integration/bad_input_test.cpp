@@ -1,0 +1,349 @@
+// Bad input, each its own test. Every test runs a real server with a well-behaved
+// bystander client connected; after the attack the bystander is still served, a
+// fresh client is served, and the server holds no more connections than it should.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <random>
+#include <set>
+
+#include "harness.h"
+#include "test_scenes.h"
+
+namespace itest {
+namespace {
+
+namespace pb = physics::wire;
+
+std::string varint(std::uint64_t value) {
+  std::string out;
+  while (value >= 0x80) {
+    out.push_back(static_cast<char>((value & 0x7F) | 0x80));
+    value >>= 7;
+  }
+  out.push_back(static_cast<char>(value));
+  return out;
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  void start(server::ServerConfig config = test_config(),
+             scene::SceneDef scene = scene::default_scene()) {
+    server_ = std::make_unique<RunningServer>(config, std::move(scene));
+    bystander_ = std::make_unique<client::Client>(server_->client_config("bystander"));
+    ASSERT_TRUE(bystander_->connect(3s)) << bystander_->last_error().to_string();
+    auto first = bystander_->next_snapshot(3s);
+    ASSERT_TRUE(first.has_value());
+    bystander_tick_ = first->tick;
+  }
+
+  // The checks every bad-input test ends with.
+  void TearDown() override {
+    if (!server_ || HasFatalFailure()) return;
+    // The bystander is still in its session and still gets new ticks.
+    auto snapshot = bystander_->newest_snapshot(3s);
+    ASSERT_TRUE(snapshot.has_value()) << bystander_->last_error().to_string();
+    EXPECT_EQ(bystander_->state(), client::ConnectionState::Connected);
+    EXPECT_GT(snapshot->tick, bystander_tick_);
+    EXPECT_NE(snapshot->find(bystander_->welcome().body_id), nullptr);
+    // A fresh client is served correctly.
+    EXPECT_EQ(check_server_serves(*server_), "");
+    // Nothing is left behind: only the bystander's connection stays open.
+    EXPECT_TRUE(eventually([&] {
+      const auto stats = server_->stats();
+      return stats.open_connections == 1 && stats.connected_clients == 1;
+    })) << "open "
+        << server_->stats().open_connections << ", joined " << server_->stats().connected_clients;
+  }
+
+  // Waits until the bystander's snapshots no longer hold `body` (it was removed).
+  bool body_removed(std::uint64_t body) {
+    return bystander_
+        ->wait_for_snapshot(3s, [&](const client::Snapshot& s) { return s.find(body) == nullptr; })
+        .has_value();
+  }
+
+  std::unique_ptr<RunningServer> server_;
+  std::unique_ptr<client::Client> bystander_;
+  std::uint64_t bystander_tick_ = 0;
+};
+
+TEST_F(BadInput, RandomBytesBeforeHelloGetAFatalErrorAndAClose) {
+  start();
+  int errors = 0;
+  for (std::uint32_t seed = 1; seed <= 16; ++seed) {
+    std::mt19937 random(seed);
+    std::string garbage(2048, '\0');
+    for (char& c : garbage) c = static_cast<char>(random() & 0xFF);
+    RawPeer peer(server_->port());
+    ASSERT_TRUE(peer.connected());
+    peer.send_bytes(garbage);
+    // Then the end of the stream: garbage whose length prefix promises more than was
+    // sent (up to 1 MiB) is cut off, and the server must see that too.
+    peer.shutdown_send();
+    if (auto error = peer.receive_error(3s)) {
+      ++errors;
+      EXPECT_TRUE(error->fatal()) << "seed " << seed << ": " << error->message();
+      EXPECT_FALSE(error->message().empty());
+    }
+    EXPECT_TRUE(peer.wait_closed(3s)) << "seed " << seed;
+  }
+  EXPECT_GT(errors, 8) << "most garbage should be answered with an Error before the close";
+  EXPECT_TRUE(eventually([&] { return server_->stats().dropped_total() >= 16u; }));
+}
+
+TEST_F(BadInput, RandomBytesAfterWelcomeEndOnlyThatSession) {
+  start();
+  RawPeer peer(server_->port());
+  ASSERT_TRUE(peer.send(hello_message("garbage-after-hello")));
+  auto welcome = peer.receive(3s);
+  ASSERT_TRUE(welcome && welcome->has_welcome());
+  const std::uint64_t body = welcome->welcome().body_id();
+  // A frame of the right length whose bytes are not a ClientMessage: field 15 with
+  // wire type 7 (invalid), then noise.
+  std::string body_bytes = "\x7F\xFF\xFF\xFF\xFF\xFF\xFF\xFF\xFF\xFF\x01 noise";
+  peer.send_bytes(varint(body_bytes.size()) + body_bytes);
+  auto error = peer.receive_error(3s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->code(), pb::ERROR_MALFORMED);
+  EXPECT_TRUE(error->fatal());
+  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(body_removed(body));
+}
+
+TEST_F(BadInput, LengthPrefixOverTheMaximumIsRefusedAndClosed) {
+  start();
+  RawPeer peer(server_->port());
+  ASSERT_TRUE(peer.send(hello_message("too-large")));
+  ASSERT_TRUE(peer.receive(3s).has_value());  // Welcome
+  // One byte over the 1 MiB limit, and only the prefix: the server must refuse it
+  // from the prefix alone, without waiting for (or allocating) the body.
+  peer.send_bytes(varint(wire::kDefaultMaxMessageBytes + 1));
+  auto error = peer.receive_error(3s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->code(), pb::ERROR_MESSAGE_TOO_LARGE);
+  EXPECT_TRUE(error->fatal());
+  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(eventually(
+      [&] { return dropped(server_->stats(), server::DropReason::MessageTooLarge) == 1; }));
+}
+
+TEST_F(BadInput, HugeLengthPrefixBeforeHelloIsRefused) {
+  start();
+  RawPeer peer(server_->port());
+  peer.send_bytes(varint(std::numeric_limits<std::uint64_t>::max() / 2));
+  auto error = peer.receive_error(3s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->code(), pb::ERROR_MESSAGE_TOO_LARGE);
+  EXPECT_TRUE(peer.wait_closed(3s));
+}
+
+TEST_F(BadInput, OverlongVarintPrefixIsMalformed) {
+  start();
+  RawPeer peer(server_->port());
+  peer.send_bytes(std::string(11, '\xFF'));
+  auto error = peer.receive_error(3s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_TRUE(error->code() == pb::ERROR_MALFORMED || error->code() == pb::ERROR_MESSAGE_TOO_LARGE)
+      << error->code();
+  EXPECT_TRUE(peer.wait_closed(3s));
+}
+
+TEST_F(BadInput, FrameCutOffByADisconnectRemovesTheSession) {
+  start();
+  std::uint64_t body = 0;
+  {
+    RawPeer peer(server_->port());
+    ASSERT_TRUE(peer.send(hello_message("cut-off")));
+    auto welcome = peer.receive(3s);
+    ASSERT_TRUE(welcome && welcome->has_welcome());
+    body = welcome->welcome().body_id();
+    // The prefix promises 50 bytes; 20 come, then the connection goes away.
+    std::string partial = varint(50) + std::string(20, '\x08');
+    peer.send_bytes(partial);
+    peer.close();
+  }
+  EXPECT_TRUE(body_removed(body));
+  EXPECT_TRUE(
+      eventually([&] { return dropped(server_->stats(), server::DropReason::Disconnected) == 1; }));
+}
+
+TEST_F(BadInput, WrongTokenIsRefused) {
+  server::ServerConfig config = test_config();
+  config.token = "sesame";
+  start(config);
+  for (const std::string token : {"wrong", ""}) {
+    client::ClientConfig intruder = server_->client_config("intruder");
+    intruder.token = token;
+    client::Client client(intruder);
+    EXPECT_FALSE(client.connect(3s));
+    EXPECT_EQ(client.state(), client::ConnectionState::Refused);
+    ASSERT_TRUE(client.last_error().server.has_value()) << client.last_error().to_string();
+    EXPECT_EQ(client.last_error().server->code, client::ErrorCode::BadToken);
+    EXPECT_TRUE(client.last_error().server->fatal);
+  }
+  EXPECT_TRUE(
+      eventually([&] { return dropped(server_->stats(), server::DropReason::BadToken) == 2; }));
+}
+
+TEST_F(BadInput, WrongProtocolVersionIsRefusedNamingBothVersions) {
+  start();
+  client::ClientConfig config = server_->client_config("from-the-future");
+  config.protocol_version = 99;
+  client::Client client(config);
+  EXPECT_FALSE(client.connect(3s));
+  EXPECT_EQ(client.state(), client::ConnectionState::Refused);
+  ASSERT_TRUE(client.last_error().server.has_value()) << client.last_error().to_string();
+  const client::ServerError& error = *client.last_error().server;
+  EXPECT_EQ(error.code, client::ErrorCode::ProtocolVersion);
+  EXPECT_NE(error.message.find("99"), std::string::npos) << error.message;
+  EXPECT_NE(error.message.find(std::to_string(client::kProtocolVersion)), std::string::npos)
+      << error.message;
+}
+
+TEST_F(BadInput, NanAndInfiniteAccelerationAreRefusedAndTheSessionStays) {
+  start();
+  client::Client player(server_->client_config("nan"));
+  ASSERT_TRUE(player.connect(3s));
+  const std::uint64_t tick = player.welcome().current_tick + 2;
+  ASSERT_TRUE(player.send_input(tick, std::nan(""), 0.0));
+  ASSERT_TRUE(player.send_input(tick + 1, 0.0, std::numeric_limits<double>::infinity()));
+  for (int i = 0; i < 2; ++i) {
+    auto error = player.next_error(3s);
+    ASSERT_TRUE(error.has_value()) << player.last_error().to_string();
+    EXPECT_EQ(error->code, client::ErrorCode::InvalidInput);
+    EXPECT_FALSE(error->fatal);
+  }
+  EXPECT_EQ(player.state(), client::ConnectionState::Connected);
+  EXPECT_EQ(server_->stats().invalid_inputs, 2u);
+  // Snapshots keep coming, the refused inputs were never applied, and the body is finite.
+  auto later =
+      player.wait_for_snapshot(3s, [&](const client::Snapshot& s) { return s.tick > tick + 2; });
+  ASSERT_TRUE(later.has_value());
+  EXPECT_FALSE(later->has_applied_input);
+  ASSERT_TRUE(later->own.has_value());
+  EXPECT_TRUE(std::isfinite(later->own->position.x) && std::isfinite(later->own->position.y));
+  // A good input afterwards is applied.
+  const std::uint64_t good = later->tick + 2;
+  ASSERT_TRUE(player.send_input(good, 1.0, 0.0));
+  EXPECT_TRUE(player
+                  .wait_for_snapshot(3s,
+                                     [&](const client::Snapshot& s) {
+                                       return s.has_applied_input &&
+                                              s.last_applied_input_tick >= good;
+                                     })
+                  .has_value());
+}
+
+TEST_F(BadInput, InputForAFarFutureTickIsRefused) {
+  start();
+  client::Client player(server_->client_config("far-future"));
+  ASSERT_TRUE(player.connect(3s));
+  const std::uint64_t now = player.welcome().current_tick;
+  const std::uint64_t ahead = player.welcome().max_ticks_ahead;
+  ASSERT_GT(ahead, 0u);
+  ASSERT_TRUE(player.send_input(now + ahead + 1000, 40.0, 0.0));
+  ASSERT_TRUE(player.send_input(std::numeric_limits<std::uint64_t>::max(), 40.0, 0.0));
+  for (int i = 0; i < 2; ++i) {
+    auto error = player.next_error(3s);
+    ASSERT_TRUE(error.has_value()) << player.last_error().to_string();
+    EXPECT_EQ(error->code, client::ErrorCode::TickTooFarAhead);
+    EXPECT_FALSE(error->fatal);
+  }
+  EXPECT_EQ(player.state(), client::ConnectionState::Connected);
+  EXPECT_EQ(server_->stats().far_future_inputs, 2u);
+  auto later =
+      player.wait_for_snapshot(3s, [&](const client::Snapshot& s) { return s.tick > now + 3; });
+  ASSERT_TRUE(later.has_value());
+  EXPECT_FALSE(later->has_applied_input);  // neither input was filed for later
+}
+
+TEST_F(BadInput, InputBeforeHelloIsAnUnexpectedMessage) {
+  start();
+  RawPeer peer(server_->port());
+  ASSERT_TRUE(peer.send(input_message(1, 1.0, 1.0)));
+  auto error = peer.receive_error(3s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->code(), pb::ERROR_UNEXPECTED_MESSAGE);
+  EXPECT_TRUE(error->fatal());
+  EXPECT_TRUE(peer.wait_closed(3s));
+}
+
+TEST_F(BadInput, SecondHelloIsAnUnexpectedMessage) {
+  start();
+  RawPeer peer(server_->port());
+  ASSERT_TRUE(peer.send(hello_message("twice")));
+  auto welcome = peer.receive(3s);
+  ASSERT_TRUE(welcome && welcome->has_welcome());
+  ASSERT_TRUE(peer.send(hello_message("twice")));
+  auto error = peer.receive_error(3s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->code(), pb::ERROR_UNEXPECTED_MESSAGE);
+  if (error->fatal()) {
+    EXPECT_TRUE(peer.wait_closed(3s));
+  }
+  peer.close();
+}
+
+TEST_F(BadInput, MaxClientsReachedRefusesTheNextOne) {
+  server::ServerConfig config = test_config();
+  config.max_clients = 2;  // the bystander and one more
+  start(config);
+  client::Client second(server_->client_config("second"));
+  ASSERT_TRUE(second.connect(3s)) << second.last_error().to_string();
+  client::Client third(server_->client_config("third"));
+  EXPECT_FALSE(third.connect(3s));
+  EXPECT_EQ(third.state(), client::ConnectionState::Refused);
+  ASSERT_TRUE(third.last_error().server.has_value());
+  EXPECT_EQ(third.last_error().server->code, client::ErrorCode::ServerFull);
+  // When one leaves, there is room again (check_server_serves in TearDown joins).
+  second.disconnect("making room");
+  EXPECT_TRUE(eventually([&] { return server_->stats().connected_clients == 1; }));
+}
+
+// No message a client can send moves any body but its own: in a scene without
+// gravity every other body stays exactly where it was, however hostile the inputs.
+TEST_F(BadInput, NoMessageMovesAnyBodyButTheSendersOwn) {
+  scene::SceneDef scene = crowd_scene(20);
+  start(test_config(), scene);
+  auto before = bystander_->newest_snapshot(3s);
+  ASSERT_TRUE(before.has_value());
+
+  client::Client attacker(server_->client_config("attacker"));
+  ASSERT_TRUE(attacker.connect(3s));
+  const std::uint64_t now = attacker.welcome().current_tick;
+  const double huge = std::numeric_limits<double>::max();
+  attacker.send_input(now + 1, huge, -huge);
+  attacker.send_input(now + 2, std::nan(""), 1.0);
+  attacker.send_input(now + 3, -1e300, 1e300);
+  attacker.send_input(0, 40.0, 40.0);  // a tick long past
+  attacker.send_input(now + 4, 50.0, 50.0);
+  auto moved = attacker.wait_for_snapshot(3s, [&](const client::Snapshot& s) {
+    return s.has_applied_input && s.last_applied_input_tick >= now + 4 && s.tick > now + 10;
+  });
+  ASSERT_TRUE(moved.has_value()) << attacker.last_error().to_string();
+  ASSERT_TRUE(moved->own.has_value());
+  EXPECT_GT(std::abs(moved->own->velocity.x), 0.0);  // its own body did move
+  EXPECT_TRUE(std::isfinite(moved->own->position.x));
+
+  auto after = bystander_->wait_for_snapshot(
+      3s, [&](const client::Snapshot& s) { return s.tick >= moved->tick; });
+  ASSERT_TRUE(after.has_value());
+  std::size_t compared = 0;
+  for (const client::BodyState& body : before->bodies) {
+    const client::BodyState* now_state = after->find(body.body_id);
+    ASSERT_NE(now_state, nullptr) << "body " << body.body_id << " vanished";
+    EXPECT_EQ(now_state->position, body.position) << "body " << body.body_id;
+    EXPECT_EQ(now_state->velocity, body.velocity) << "body " << body.body_id;
+    ++compared;
+  }
+  EXPECT_GE(compared, 21u);  // the crowd and the bystander
+  EXPECT_EQ(before->find(attacker.welcome().body_id), nullptr);
+  EXPECT_GE(server_->stats().clamped_inputs, 1u);
+  attacker.disconnect();
+}
+
+}  // namespace
+}  // namespace itest

@@ -1,0 +1,60 @@
+// A client that never reads: the server keeps serving the others, keeps that
+// client's queue bounded (the newest snapshot replaces unsent ones), and finally
+// drops it. Snapshots of 3,000 bodies (about 120 kB each) fill the socket buffers
+// in well under a second, so the bound is reached quickly.
+#include <gtest/gtest.h>
+
+#include "harness.h"
+#include "test_scenes.h"
+
+namespace itest {
+namespace {
+
+TEST(SlowClient, NeverReadingClientIsBoundedThenDroppedWhileOthersAreServed) {
+  server::ServerConfig config = test_config();
+  config.idle_timeout = 1000ms;
+  config.max_queued_snapshots = 4;
+  RunningServer server(config, crowd_scene(3000));
+
+  client::Client good(server.client_config("good"));
+  ASSERT_TRUE(good.connect(3s)) << good.last_error().to_string();
+
+  RawPeer sleeper(server.port());
+  sleeper.set_receive_buffer(4096);
+  ASSERT_TRUE(sleeper.send(hello_message("never-reads")));
+
+  // The sleeper keeps talking (so it is not idle) but never reads; only the write
+  // stall can get it dropped. It sends inputs, which have no reply (a Ping's Pong
+  // would pile up too). Meanwhile the good client must keep getting ticks.
+  std::uint64_t last_tick = 0;
+  std::size_t good_snapshots = 0;
+  const auto was_dropped = [&] {
+    const auto stats = server.stats();
+    return dropped(stats, server::DropReason::TooSlow) + dropped(stats, server::DropReason::Idle) >
+           0;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + 15s;
+  while (!was_dropped() && std::chrono::steady_clock::now() < deadline) {
+    sleeper.send(input_message(last_tick + 1, 0.0, 0.0));
+    auto snapshot = good.next_snapshot(2s);
+    ASSERT_TRUE(snapshot.has_value())
+        << "the good client stalled: " << good.last_error().to_string();
+    EXPECT_GT(snapshot->tick, last_tick);
+    last_tick = snapshot->tick;
+    ++good_snapshots;
+  }
+  ASSERT_TRUE(was_dropped()) << "the never-reading client was not dropped";
+  const server::ServerStats stats = server.stats();
+  EXPECT_EQ(dropped(stats, server::DropReason::TooSlow), 1u)
+      << "dropped for being idle instead of for not reading";
+  // Its backlog was bounded: unsent snapshots were replaced, not queued.
+  EXPECT_GT(stats.dropped_snapshots, 0u);
+  EXPECT_GT(good_snapshots, 10u);
+  EXPECT_EQ(good.state(), client::ConnectionState::Connected);
+  EXPECT_TRUE(eventually([&] { return server.stats().open_connections == 1; }));
+  EXPECT_TRUE(sleeper.wait_closed(5s));
+  EXPECT_EQ(check_server_serves(server), "");
+}
+
+}  // namespace
+}  // namespace itest

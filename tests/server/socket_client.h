@@ -1,0 +1,43 @@
+#pragma once
+// A minimal blocking client for the server's own socket tests: raw bytes out,
+// framed ServerMessages in, every wait bounded by a timeout.
+#include <asio.hpp>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "wire.pb.h"
+#include "wire/framing.h"
+
+namespace server_test {
+
+class SocketClient {
+ public:
+  // receive_buffer_bytes > 0 sets SO_RCVBUF before connecting (slow-reader tests).
+  explicit SocketClient(std::uint16_t port, int receive_buffer_bytes = 0);
+
+  void send_raw(const std::string& bytes);
+  void send(const physics::wire::ClientMessage& message);
+  // The next message, or nullopt on end of stream, error or timeout.
+  std::optional<physics::wire::ServerMessage> receive(
+      std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
+  // Reads (and discards) until the server closes; false on timeout.
+  bool wait_closed(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
+  // Hello, then the Welcome (nullopt if something else came).
+  std::optional<physics::wire::Welcome> join(const std::string& name,
+                                             const std::string& token = {});
+  bool closed() const { return closed_; }
+
+ private:
+  // One read of whatever is there; false on end of stream, error or timeout.
+  bool read_some(std::chrono::steady_clock::time_point deadline);
+
+  asio::io_context io_;
+  asio::ip::tcp::socket socket_;
+  wire::FrameReader reader_{std::size_t{64} << 20};
+  std::array<std::uint8_t, 65536> buffer_{};
+  bool closed_ = false;
+};
+
+}  // namespace server_test

@@ -1,0 +1,97 @@
+// Hard case 6, the pile: 16,000 circles of radius 0.5 rained into a container
+// 100 m wide with walls 500 m high, from up to 240 m. Bounds:
+//   none escapes (every centre stays inside the container), checked every 10 steps;
+//   nothing becomes NaN or infinite, checked every 10 steps;
+//   after settling (30 s), no two circles (nor a circle and the container) overlap
+//   by more than 0.01 m;
+//   once settled, the kinetic energy never grows from one step to the next (10 s).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <vector>
+
+#include "stability_scenes.h"
+
+namespace phys::testing {
+namespace {
+
+constexpr int kCircles = 16'000;
+constexpr int kPerRow = 80;
+constexpr double kInner = 50.0;  // inner faces of the walls at x = +-50
+constexpr double kWallTop = 500.0;
+constexpr int kSettleSteps = 1800;  // 30 s
+constexpr int kWatchSteps = 600;    // 10 s more
+constexpr double kMaxOverlap = 0.01;
+
+void build_pile(World& world) {
+  add_or_fail(world, box_def({0.0, -0.5}, {kInner + 1.0, 0.5}, Motion::Static));
+  add_or_fail(world, box_def({-kInner - 0.5, kWallTop / 2}, {0.5, kWallTop / 2}, Motion::Static));
+  add_or_fail(world, box_def({kInner + 0.5, kWallTop / 2}, {0.5, kWallTop / 2}, Motion::Static));
+  for (int n = 0; n < kCircles; ++n) {
+    const int row = n / kPerRow;
+    const int column = n % kPerRow;
+    // A small deterministic jitter so that columns do not stack perfectly.
+    const double jitter = 0.05 * ((column * 7 + row * 3) % 5 - 2);
+    const Vec2 centre{-47.4 + 1.2 * column + jitter, 1.0 + 1.2 * row};
+    add_or_fail(world, circle_def(centre, 0.5));
+  }
+}
+
+void expect_contained(const std::vector<BodyState>& bodies, int step) {
+  ASSERT_TRUE(all_finite(bodies)) << "non-finite state at step " << step;
+  for (const BodyState& b : bodies) {
+    if (b.motion == Motion::Static) continue;
+    ASSERT_GT(b.position.x, -kInner) << "escaped left at step " << step;
+    ASSERT_LT(b.position.x, kInner) << "escaped right at step " << step;
+    ASSERT_GT(b.position.y, 0.0) << "fell through the floor at step " << step;
+    ASSERT_LT(b.position.y, kWallTop) << "flew out at step " << step;
+  }
+}
+
+TEST(Pile, SixteenThousandCirclesSettleContainedWithoutOverlapOrEnergyGrowth) {
+  World world;
+  build_pile(world);
+  ASSERT_EQ(world.dynamic_body_count(), static_cast<std::size_t>(kCircles));
+  const auto began = std::chrono::steady_clock::now();
+  for (int step = 1; step <= kSettleSteps; ++step) {
+    world.step(kDt);
+    if (step % 10 == 0) {
+      ASSERT_NO_FATAL_FAILURE(expect_contained(world.bodies(), step));
+    }
+  }
+  const double settle_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  std::vector<BodyState> bodies = world.bodies();
+  const double settled_overlap = max_overlap(bodies);
+  double energy = kinetic_energy(bodies);
+  std::printf("pile: settled after %d steps in %.1f s wall; overlap %.4g m, KE %.4g J, awake %zu\n",
+              kSettleSteps, settle_seconds, settled_overlap, energy, world.awake_body_count());
+  EXPECT_LE(settled_overlap, kMaxOverlap);
+
+  double worst_growth = 0.0;
+  int growth_steps = 0;
+  for (int step = 1; step <= kWatchSteps; ++step) {
+    world.step(kDt);
+    bodies = world.bodies();
+    const double now = kinetic_energy(bodies);
+    if (now > energy) {
+      ++growth_steps;
+      worst_growth = std::max(worst_growth, now - energy);
+    }
+    energy = now;
+    if (step % 10 == 0) {
+      ASSERT_NO_FATAL_FAILURE(expect_contained(bodies, kSettleSteps + step));
+    }
+  }
+  const double final_overlap = max_overlap(bodies);
+  std::printf(
+      "pile: after %d more steps overlap %.4g m, KE %.4g J, KE grew on %d steps (worst +%.3g J)\n",
+      kWatchSteps, final_overlap, energy, growth_steps, worst_growth);
+  EXPECT_EQ(growth_steps, 0) << "kinetic energy grew once settled, by up to " << worst_growth
+                             << " J";
+  EXPECT_LE(final_overlap, kMaxOverlap);
+}
+
+}  // namespace
+}  // namespace phys::testing

@@ -1,0 +1,225 @@
+// Bad values are refused with the error that names the field at fault, and a
+// refused body leaves the world as it was: NaN and infinite numbers, negative or
+// zero sizes, non-positive masses of dynamic bodies, restitution and friction out
+// of range, NaN accelerations through set_acceleration, bad settings.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string_view>
+
+#include "physics_test_support.h"
+
+namespace phys::testing {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+BodyDefError refusal(const BodyDef& def) {
+  World world;
+  BodyDefError error = BodyDefError::None;
+  const BodyId id = world.add_body(def, &error);
+  EXPECT_FALSE(id.is_valid());
+  EXPECT_EQ(world.body_count(), 0u) << "a refused body was added";
+  return error;
+}
+
+BodyDef good_box() { return box_def({0.0, 0.0}, {0.5, 0.5}); }
+BodyDef good_circle() { return circle_def({0.0, 0.0}, 0.5); }
+
+TEST(BadBodyDef, NaNPosition) {
+  BodyDef def = good_box();
+  def.position.x = kNaN;
+  EXPECT_EQ(refusal(def), BodyDefError::NonFinitePosition);
+}
+
+TEST(BadBodyDef, InfinitePosition) {
+  BodyDef def = good_circle();
+  def.position.y = -kInf;
+  EXPECT_EQ(refusal(def), BodyDefError::NonFinitePosition);
+}
+
+TEST(BadBodyDef, NaNVelocity) {
+  BodyDef def = good_box();
+  def.velocity.y = kNaN;
+  EXPECT_EQ(refusal(def), BodyDefError::NonFiniteVelocity);
+}
+
+TEST(BadBodyDef, InfiniteAcceleration) {
+  BodyDef def = good_box();
+  def.acceleration.x = kInf;
+  EXPECT_EQ(refusal(def), BodyDefError::NonFiniteAcceleration);
+}
+
+TEST(BadBodyDef, NegativeRadius) {
+  BodyDef def = good_circle();
+  def.radius = -0.5;
+  EXPECT_EQ(refusal(def), BodyDefError::BadRadius);
+}
+
+TEST(BadBodyDef, ZeroAndNaNRadius) {
+  BodyDef def = good_circle();
+  def.radius = 0.0;
+  EXPECT_EQ(refusal(def), BodyDefError::BadRadius);
+  def.radius = kNaN;
+  EXPECT_EQ(refusal(def), BodyDefError::BadRadius);
+}
+
+TEST(BadBodyDef, ZeroOrNegativeHalfExtents) {
+  BodyDef def = good_box();
+  def.half_extents = {0.0, 1.0};
+  EXPECT_EQ(refusal(def), BodyDefError::BadHalfExtents);
+  def.half_extents = {1.0, -1.0};
+  EXPECT_EQ(refusal(def), BodyDefError::BadHalfExtents);
+}
+
+TEST(BadBodyDef, ZeroMassDynamic) {
+  BodyDef def = good_box();
+  def.mass = 0.0;
+  EXPECT_EQ(refusal(def), BodyDefError::BadMass);
+}
+
+TEST(BadBodyDef, NegativeAndNaNMassDynamic) {
+  BodyDef def = good_circle();
+  def.mass = -1.0;
+  EXPECT_EQ(refusal(def), BodyDefError::BadMass);
+  def.mass = kNaN;
+  EXPECT_EQ(refusal(def), BodyDefError::BadMass);
+}
+
+TEST(BadBodyDef, ZeroMassStaticIsFineBecauseStaticMassIsInfinite) {
+  World world;
+  BodyDef def = box_def({0.0, 0.0}, {1.0, 1.0}, Motion::Static);
+  def.mass = 0.0;
+  const BodyId id = add_or_fail(world, def);
+  ASSERT_TRUE(id.is_valid());
+  EXPECT_EQ(world.body(id)->mass, 0.0);  // reported as 0: infinite
+}
+
+TEST(BadBodyDef, RestitutionOutOfRange) {
+  BodyDef def = good_box();
+  def.restitution = 1.5;
+  EXPECT_EQ(refusal(def), BodyDefError::BadRestitution);
+  def.restitution = -0.1;
+  EXPECT_EQ(refusal(def), BodyDefError::BadRestitution);
+}
+
+TEST(BadBodyDef, NegativeFriction) {
+  BodyDef def = good_box();
+  def.friction = {-1.0, 0.0};
+  EXPECT_EQ(refusal(def), BodyDefError::BadFriction);
+  def.friction = {0.0, kNaN};
+  EXPECT_EQ(refusal(def), BodyDefError::BadFriction);
+}
+
+TEST(BadBodyDef, LargerThanTheSizeLimit) {
+  BodyDef def = good_circle();
+  def.radius = 2.0 * WorldSettings{}.max_body_size;
+  EXPECT_EQ(refusal(def), BodyDefError::TooLarge);
+}
+
+TEST(BadBodyDef, OutsideTheBoundsWhenTheWorldHasBounds) {
+  WorldSettings settings;
+  settings.has_bounds = true;
+  settings.bounds = {{-10.0, -10.0}, {10.0, 10.0}};
+  World world(settings);
+  BodyDefError error = BodyDefError::None;
+  EXPECT_FALSE(world.add_body(box_def({50.0, 0.0}, {0.5, 0.5}), &error).is_valid());
+  EXPECT_EQ(error, BodyDefError::OutOfBounds);
+  EXPECT_TRUE(world.add_body(box_def({5.0, 0.0}, {0.5, 0.5}), &error).is_valid());
+}
+
+TEST(BadBodyDef, TooManyBodies) {
+  WorldSettings settings;
+  settings.max_bodies = 3;
+  World world(settings);
+  for (int i = 0; i < 3; ++i) add_or_fail(world, box_def({3.0 * i, 0.0}, {0.5, 0.5}));
+  BodyDefError error = BodyDefError::None;
+  EXPECT_FALSE(world.add_body(box_def({20.0, 0.0}, {0.5, 0.5}), &error).is_valid());
+  EXPECT_EQ(error, BodyDefError::TooManyBodies);
+  EXPECT_EQ(world.body_count(), 3u);
+}
+
+TEST(BadBodyDef, RefusalWithoutAnErrorPointerDoesNotCrash) {
+  World world;
+  BodyDef def = good_box();
+  def.mass = kNaN;
+  EXPECT_FALSE(world.add_body(def).is_valid());
+}
+
+TEST(BadBodyDef, EveryErrorHasADescription) {
+  for (const BodyDefError error :
+       {BodyDefError::NonFinitePosition, BodyDefError::NonFiniteVelocity,
+        BodyDefError::NonFiniteAcceleration, BodyDefError::BadRadius, BodyDefError::BadHalfExtents,
+        BodyDefError::BadMass, BodyDefError::BadRestitution, BodyDefError::BadFriction,
+        BodyDefError::OutOfBounds, BodyDefError::TooLarge, BodyDefError::TooManyBodies}) {
+    EXPECT_FALSE(describe(error).empty());
+    EXPECT_NE(describe(error), describe(BodyDefError::None));
+  }
+}
+
+class BadInputs : public WorldTest {};
+
+TEST_F(BadInputs, NaNAccelerationIsRefusedAndTheOldOneKept) {
+  const BodyId id = make_box({0.0, 0.0});
+  ASSERT_TRUE(world_.set_acceleration(id, {1.0, 2.0}));
+  EXPECT_FALSE(world_.set_acceleration(id, {kNaN, 0.0}));
+  EXPECT_FALSE(world_.set_acceleration(id, {0.0, kInf}));
+  EXPECT_EQ(state(id).acceleration, (Vec2{1.0, 2.0}));
+  world_.step(kDt);
+  EXPECT_TRUE(all_finite(world_.bodies()));
+}
+
+TEST_F(BadInputs, NaNPositionAndVelocityAreRefused) {
+  const BodyId id = make_box({1.0, 1.0});
+  EXPECT_FALSE(world_.set_position(id, {kNaN, 0.0}));
+  EXPECT_FALSE(world_.set_velocity(id, {0.0, -kInf}));
+  EXPECT_EQ(state(id).position, (Vec2{1.0, 1.0}));
+  EXPECT_EQ(state(id).velocity, (Vec2{}));
+}
+
+TEST_F(BadInputs, AccelerationMagnitudeIsClampedToTheLimit) {
+  const BodyId id = make_box({0.0, 0.0});
+  ASSERT_TRUE(world_.set_acceleration(id, {3.0e30, 4.0e30}));
+  const Vec2 a = state(id).acceleration;
+  EXPECT_NEAR(length(a), world_.settings().max_acceleration,
+              1e-9 * world_.settings().max_acceleration);
+  EXPECT_NEAR(a.x / a.y, 0.75, 1e-12);  // the direction is kept
+}
+
+TEST_F(BadInputs, StaticBodiesTakeNoAcceleration) {
+  const BodyId wall = make_static_box({0.0, 0.0}, {1.0, 1.0});
+  world_.set_acceleration(wall, {5.0, 0.0});
+  world_.step(kDt);
+  EXPECT_EQ(position(wall), (Vec2{0.0, 0.0}));
+}
+
+TEST(BadSettings, EachIsNamed) {
+  WorldSettings s;
+  EXPECT_EQ(check_settings(s), SettingsError::None);
+  s.gravity.y = kNaN;
+  EXPECT_EQ(check_settings(s), SettingsError::NonFiniteGravity);
+  s = {};
+  s.substeps = 0;
+  EXPECT_EQ(check_settings(s), SettingsError::BadSubsteps);
+  s = {};
+  s.slop = -1.0;
+  EXPECT_EQ(check_settings(s), SettingsError::BadSlop);
+  s = {};
+  s.position_iterations = 0;
+  EXPECT_EQ(check_settings(s), SettingsError::BadIterations);
+  s = {};
+  s.max_speed = 0.0;
+  EXPECT_EQ(check_settings(s), SettingsError::BadSpeedLimit);
+  s = {};
+  s.sleep_time = -1.0;
+  EXPECT_EQ(check_settings(s), SettingsError::BadSleep);
+  s = {};
+  s.has_bounds = true;
+  s.bounds = {{1.0, 1.0}, {0.0, 2.0}};
+  EXPECT_EQ(check_settings(s), SettingsError::BadBounds);
+  EXPECT_NE(std::string_view(describe(SettingsError::BadBounds)), "");
+}
+
+}  // namespace
+}  // namespace phys::testing
