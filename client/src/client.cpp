@@ -1,5 +1,6 @@
 #include "client/client.h"
 
+#include <algorithm>
 #include <array>
 #include <asio.hpp>
 #include <utility>
@@ -200,8 +201,19 @@ bool Client::wait_until(Wait what, std::chrono::milliseconds timeout) {
   if (has(what)) return true;
   if (!io_ || state_ != ConnectionState::Connected) return false;
   const auto deadline = Clock::now() + timeout;
-  io_->run_until(deadline,
-                 [this, what] { return has(what) || state_ != ConnectionState::Connected; });
+  const auto done = [this, what] { return has(what) || state_ != ConnectionState::Connected; };
+  while (!done()) {
+    auto until = deadline;
+    if (config_.keepalive.count() > 0) until = std::min(until, last_sent_ + config_.keepalive);
+    if (!io_->run_until(until, done) && !done()) {
+      const auto now = Clock::now();
+      if (config_.keepalive.count() > 0 && now >= last_sent_ + config_.keepalive) {
+        send_ping(0);  // keepalive; its Pong is kept like any other (bounded)
+        continue;
+      }
+      if (now >= deadline || io_->context.stopped()) break;
+    }
+  }
   return has(what);
 }
 
@@ -312,6 +324,7 @@ bool Client::send_frame(const std::string& frame) {
     return false;
   }
   stats_.bytes_sent += frame.size();
+  last_sent_ = Clock::now();
   return true;
 }
 

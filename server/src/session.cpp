@@ -1,7 +1,5 @@
 #include "session.h"
 
-#include <spdlog/spdlog.h>
-
 #include <utility>
 
 #include "wire/messages.h"

@@ -31,6 +31,7 @@ class BadInput : public ::testing::Test {
  protected:
   void start(server::ServerConfig config = test_config(),
              scene::SceneDef scene = scene::default_scene()) {
+    max_queued_snapshots_ = config.max_queued_snapshots;
     server_ = std::make_unique<RunningServer>(config, std::move(scene));
     bystander_ = std::make_unique<client::Client>(server_->client_config("bystander"));
     ASSERT_TRUE(bystander_->connect(3s)) << bystander_->last_error().to_string();
@@ -50,7 +51,9 @@ class BadInput : public ::testing::Test {
     EXPECT_NE(snapshot->find(bystander_->welcome().body_id), nullptr);
     // A fresh client is served correctly.
     EXPECT_EQ(check_server_serves(*server_), "");
-    // Nothing is left behind: only the bystander's connection stays open.
+    // Queues stayed bounded, and nothing is left behind: only the bystander's
+    // connection stays open.
+    EXPECT_LE(server_->stats().peak_queued_snapshots, max_queued_snapshots_ + 1);
     EXPECT_TRUE(eventually([&] {
       const auto stats = server_->stats();
       return stats.open_connections == 1 && stats.connected_clients == 1;
@@ -68,6 +71,7 @@ class BadInput : public ::testing::Test {
   std::unique_ptr<RunningServer> server_;
   std::unique_ptr<client::Client> bystander_;
   std::uint64_t bystander_tick_ = 0;
+  std::size_t max_queued_snapshots_ = 0;
 };
 
 TEST_F(BadInput, RandomBytesBeforeHelloGetAFatalErrorAndAClose) {

@@ -32,6 +32,10 @@ struct ClientConfig {
   // dropped (and counted) so that a caller that stops taking them cannot make the
   // client grow without bound.
   std::size_t max_buffered_snapshots = 4096;
+  // While the caller waits in one of our calls and nothing has been sent for this
+  // long, the client sends a Ping, so that a client that only watches is not
+  // dropped as idle (the server's idle timeout is 10 s by default). 0 turns it off.
+  std::chrono::milliseconds keepalive{2000};
 };
 
 // Why the client is not (or no longer) connected.
@@ -114,6 +118,7 @@ class Client {
   ClientStats stats_;
   Welcome welcome_;
   std::uint64_t next_sequence_ = 1;
+  std::chrono::steady_clock::time_point last_sent_{};
   std::deque<Snapshot> snapshots_;
   std::deque<ServerError> errors_;
   std::deque<Pong> pongs_;

@@ -521,7 +521,12 @@ class StepRunner {
           }
         }
         const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
-        const double closing = dot(vb - a.velocity, n);
+        double closing = dot(vb - a.velocity, n);
+        // An immovable supporter can stop the bodies it carries but never lift them:
+        // its own motion away from them counts as zero. Otherwise a supported body
+        // moving up hands its velocity to every body above it, all the way up a pile.
+        if (wa == 0.0 && !cand.fixed) closing += std::max(dot(a.velocity, n), 0.0);
+        if (wb == 0.0 && !cand.fixed) closing -= std::min(dot(b.velocity, n), 0.0);
         if (wa + wb <= 0.0) continue;
         // Sequential impulses: the impulse accumulated on a contact may shrink again
         // but never pull (stay >= 0), so iterations converge to a velocity that

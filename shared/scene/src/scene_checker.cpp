@@ -329,6 +329,8 @@ bool check_body(Checker& check, const proto::Body& body, const FieldPath& path,
       !check.not_negative(friction.child("y"), body.friction().y()))
     return false;
   def.friction = to_vec(body.friction());
+  if (!check.not_negative(path.child("contact_friction"), body.contact_friction())) return false;
+  def.contact_friction = body.contact_friction();
   *out = def;
   return true;
 }
