@@ -1,4 +1,4 @@
-// physics-netbench: the figures of docs/NETWORK-FIGURES.md in one process. It runs
+// physics-netbench: the figures of docs/BENCHMARKS.md (Network) in one process. It runs
 // a real server::Server on a loopback port, N bots of the client library against
 // it (client::run_load, the same code as physics-client --bots), and reads the
 // server's own time per tick from stats(): the mean from total_tick_seconds, the
