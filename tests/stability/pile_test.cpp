@@ -66,7 +66,9 @@ TEST(Pile, SixteenThousandCirclesStayContainedAndFiniteWhileRaining) {
 // Measured at the last change (Release): after 30 s the worst overlap is 0.04 m
 // (bound 0.01) and over the next 10 s the kinetic energy grows on about 400 of 600
 // steps (by up to 1.8 kJ): a deep frictionless pile keeps churning and never falls
-// asleep. Run it with --gtest_also_run_disabled_tests --gtest_filter='Pile.*'.
+// asleep (the moving bodies are in the middle and upper part of a still mounded pile;
+// docs/PHYSICS.md, "Known limit"). Run it with --gtest_also_run_disabled_tests
+// --gtest_filter='Pile.*'.
 TEST(Pile, DISABLED_SixteenThousandCirclesSettleContainedWithoutOverlapOrEnergyGrowth) {
   World world;
   build_pile(world);
