@@ -65,7 +65,7 @@ class StepRunner {
 
   void run() {
     if (w_.lists_dirty_) w_.rebuild_lists();
-    w_.counters.sleeping_bodies_skipped += w_.fixed_.size() - static_count();
+    w_.counters.sleeping_bodies_skipped += w_.fixed_sleeping_;
     if (w_.active_.empty()) return;
     {
       PhaseTimer t(s_.profile, w_.profile.integrate);
@@ -97,13 +97,6 @@ class StepRunner {
 
  private:
   Body& body(std::uint32_t slot) { return w_.bodies[slot]; }
-  std::size_t static_count() const { return w_.fixed_.size() - sleeping_count(); }
-  std::size_t sleeping_count() const {
-    std::size_t n = 0;
-    for (std::uint32_t slot : w_.fixed_) n += w_.bodies[slot].is_dynamic() ? 1 : 0;
-    return n;
-  }
-
   // Awake bodies are processed from the lowest (along gravity) up, so that a body's
   // supports are resolved before it. The order persists between steps and is
   // nearly sorted, so insertion sort is about O(N).

@@ -150,6 +150,7 @@ void WorldImpl::rebuild_lists() {
   fixed_.clear();
   fixed_boxes_.clear();
   fixed_circles_ = 0;
+  fixed_sleeping_ = 0;
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
     if (!b.alive) continue;
@@ -159,6 +160,7 @@ void WorldImpl::rebuild_lists() {
       fixed_.push_back(i);
       fixed_boxes_.push_back(b.bounds());
       fixed_circles_ += b.shape == Shape::Circle ? 1 : 0;
+      fixed_sleeping_ += b.is_dynamic() ? 1 : 0;
     }
   }
   fixed_grid_.build(fixed_boxes_);

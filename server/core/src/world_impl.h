@@ -111,7 +111,8 @@ class WorldImpl {
   UniformGrid fixed_grid_;
   UniformGrid active_grid_;
   std::vector<Aabb> fixed_boxes_;
-  std::size_t fixed_circles_ = 0;  // circles among the static and sleeping bodies
+  std::size_t fixed_circles_ = 0;   // circles among the static and sleeping bodies
+  std::size_t fixed_sleeping_ = 0;  // sleeping bodies among them
 
   // Per-step scratch, kept to avoid allocating every step.
   std::vector<Aabb> active_boxes_;  // what each awake body may reach this sub-step
