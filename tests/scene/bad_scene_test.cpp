@@ -190,6 +190,18 @@ TEST(BadScene, NegativeFrictionIsRefused) {
             "bodies[0].friction.y");
 }
 
+TEST(BadScene, ContactFrictionIsCarriedIntoTheBody) {
+  const SceneDef def =
+      accepted(scene_with("bodies { circle { radius: 1 } contact_friction: 0.3 }\n"));
+  ASSERT_EQ(def.bodies.size(), 1u);
+  EXPECT_DOUBLE_EQ(def.bodies[0].contact_friction, 0.3);
+}
+
+TEST(BadScene, NegativeContactFrictionIsRefused) {
+  EXPECT_EQ(refused(scene_with("bodies { circle { radius: 1 } contact_friction: -0.5 }\n")).field,
+            "bodies[0].contact_friction");
+}
+
 TEST(BadScene, StaticBodyThatMovesIsRefused) {
   EXPECT_EQ(
       refused(scene_with("bodies { circle { radius: 1 } is_static: true velocity { x: 1 } }\n"))
