@@ -4,5 +4,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-scripts/build.sh >/dev/null
+echo "run: building (the first build takes several minutes)" >&2
+scripts/build.sh >&2
 exec "${BUILD_DIR:-build}/server/physics-server" "$@"
