@@ -126,8 +126,7 @@ bool apply_restitution(Vec2& v1, double inv_mass1, Vec2& v2, double inv_mass2, V
   if (inv_sum <= 0.0) return false;
   const double closing = dot(v2 - v1, n);  // < 0: approaching
   if (closing >= 0.0) return false;
-  // Below rest_speed a contact is resting: no bounce, so it comes to rest exactly.
-  const double e = -closing < rest_speed ? 0.0 : restitution;
+  const double e = effective_restitution(-closing, restitution, rest_speed);
   const double impulse = -(1.0 + e) * closing / inv_sum;
   v1 -= n * (impulse * inv_mass1);
   v2 += n * (impulse * inv_mass2);

@@ -136,10 +136,6 @@ class StepRunner {
       std::sort(keyed.begin(), keyed.end());
       for (std::size_t p = 0; p < order.size(); ++p) order[p] = keyed[p].second;
     }
-    w_.position_in_active_.assign(w_.bodies.size(), kNone);
-    for (std::size_t p = 0; p < order.size(); ++p) {
-      w_.position_in_active_[order[p]] = static_cast<std::uint32_t>(p);
-    }
   }
 
   // Friction, acceleration and gravity: the free motion of each awake body over the
@@ -227,11 +223,12 @@ class StepRunner {
       if (w_.fixed_grid_.size() > 0) {
         w_.fixed_grid_.find_overlaps(fat[p], w_.overlaps_);
         for (std::uint32_t f : w_.overlaps_) {
-          w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], true});
+          w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], p, kNone, true});
         }
       }
       while (next_pair < w_.active_pairs_.size() && w_.active_pairs_[next_pair].a == p) {
-        w_.candidates_.push_back({w_.active_[p], w_.active_[w_.active_pairs_[next_pair].b], false});
+        const std::uint32_t q = w_.active_pairs_[next_pair].b;
+        w_.candidates_.push_back({w_.active_[p], w_.active_[q], p, q, false});
         ++next_pair;
       }
     }
@@ -295,11 +292,12 @@ class StepRunner {
       if (body(hit_body).is_dynamic()) {
         const bool from_above =
             axis == 1 && dot(up_, Vec2{0.0, path.x0 > level ? 1.0 : -1.0}) > 0.0;
-        if (std::fabs(v_hit) > (from_above ? rest_speed_ : s_.sleep_speed)) {
+        if (std::fabs(v_hit) > wake_speed(from_above)) {
           w_.to_wake_.push_back(hit_body);
         }
       }
-      const double v_out = std::fabs(v_hit) < rest_speed_ ? 0.0 : -restitution * v_hit;
+      const double v_out =
+          -effective_restitution(std::fabs(v_hit), restitution, rest_speed_) * v_hit;
       const double left = path.h - first_t;
       if (v_out == 0.0) {
         // Resting contact: stay where it touched, a few ulps inside so the contact
@@ -343,7 +341,7 @@ class StepRunner {
     auto& near_list = w_.near_candidates_;
     near_list.clear();
     for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
-      w_.supported_.assign(w_.bodies.size(), 0);
+      w_.supported_.assign(w_.active_.size(), 0);
       bool moved = false;
       const bool first = iteration == 0;
       const std::size_t count = first ? w_.candidates_.size() : near_list.size();
@@ -417,28 +415,37 @@ class StepRunner {
     });
   }
 
+  // Shock propagation, for both the position and the velocity passes: a body resting
+  // on support (a fixed body below it, or a supported body) is immovable for the
+  // bodies it carries, for contacts within 60 degrees of vertical. wa and wb are
+  // the inverse-mass weights of the pair; the carrier's becomes zero.
+  void carry(const Candidate& cand, double up, double& wa, double& wb) {
+    auto& supported = w_.supported_;
+    if (cand.fixed) {
+      if (up < -kSupportCosine) supported[cand.lower_pos] = 1;
+    } else if (!shock_) {
+      return;
+    } else if (up > kSupportCosine && supported[cand.lower_pos]) {
+      wa = 0.0;
+      supported[cand.upper_pos] = 1;
+    } else if (up < -kSupportCosine && supported[cand.upper_pos]) {
+      wb = 0.0;
+      supported[cand.lower_pos] = 1;
+    }
+  }
+
   // Pushes a and b apart along n (from a toward b) by depth plus slop, split by
   // inverse mass, and records the contact for restitution. With shock propagation a
   // supported body is immovable for the bodies it carries.
   bool separate(std::uint32_t c, Body& a, Body& b, Vec2 n, double depth) {
     const double up = dot(n, up_);
     const Candidate& cand = w_.candidates_[c];
-    double wa = 0.0;
-    double wb = 0.0;
-    if (cand.fixed) {
-      wa = 1.0;
-      if (up < -kSupportCosine) w_.supported_[cand.lower] = 1;
-    } else if (shock_ && up > kSupportCosine && w_.supported_[cand.lower]) {
-      wb = 1.0;
-      w_.supported_[cand.upper] = 1;
-    } else if (shock_ && up < -kSupportCosine && w_.supported_[cand.upper]) {
-      wa = 1.0;
-      w_.supported_[cand.lower] = 1;
-    } else {
-      const double sum = a.inv_mass + b.inv_mass;
-      wa = a.inv_mass / sum;
-      wb = b.inv_mass / sum;
-    }
+    double wa = a.inv_mass;
+    double wb = cand.fixed ? 0.0 : b.inv_mass;
+    carry(cand, up, wa, wb);
+    const double sum = wa + wb;
+    wa /= sum;
+    wb /= sum;
     record_contact(c, n, up);
     const double push = depth + s_.slop;
     if (depth == 0.0 && !(push > 0.0)) return false;
@@ -484,7 +491,8 @@ class StepRunner {
       const Body& b = body(cand.upper);
       const double closing = dot(b.velocity - a.velocity, contacts[i].normal);
       const double e = mix_restitution(a.restitution, b.restitution);
-      w_.contact_targets_[i] = (closing < 0.0 && -closing >= rest_speed_) ? -e * closing : 0.0;
+      w_.contact_targets_[i] =
+          closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
       w_.contact_mu_[i] = mix_contact_friction(a.contact_friction, b.contact_friction);
       w_.contact_warm_[i] =
           s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
@@ -492,7 +500,7 @@ class StepRunner {
     }
     cancel_velocity_into_corrections();
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
-      w_.supported_.assign(w_.bodies.size(), 0);
+      w_.supported_.assign(w_.active_.size(), 0);
       bool changed = false;
       for (std::size_t i = 0; i < contacts.size(); ++i) {
         const Candidate& cand = w_.candidates_[contacts[i].candidate];
@@ -501,18 +509,7 @@ class StepRunner {
         const Vec2 n = contacts[i].normal;
         double wa = a.inv_mass;
         double wb = cand.fixed ? 0.0 : b.inv_mass;
-        if (shock_) {
-          const double up = dot(n, up_);
-          if (cand.fixed) {
-            if (up < -kSupportCosine) w_.supported_[cand.lower] = 1;
-          } else if (up > kSupportCosine && w_.supported_[cand.lower]) {
-            wa = 0.0;
-            w_.supported_[cand.upper] = 1;
-          } else if (up < -kSupportCosine && w_.supported_[cand.upper]) {
-            wb = 0.0;
-            w_.supported_[cand.lower] = 1;
-          }
-        }
+        carry(cand, dot(n, up_), wa, wb);
         const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
         double closing = dot(vb - a.velocity, n);
         // An immovable supporter can stop the bodies it carries but never lift them:
@@ -607,8 +604,10 @@ class StepRunner {
   // (from above), or at all from the side or below.
   void wake_if_hit(const Candidate& cand, const ContactRecord& contact, double closing) {
     const bool resting_on_it = dot(contact.normal, up_) < -kSupportCosine;
-    const double threshold = resting_on_it ? rest_speed_ : s_.sleep_speed;
-    if (-closing > threshold) w_.to_wake_.push_back(cand.upper);
+    if (-closing > wake_speed(resting_on_it)) w_.to_wake_.push_back(cand.upper);
+  }
+  double wake_speed(bool resting_on_it) const {
+    return resting_on_it ? rest_speed_ : s_.sleep_speed;
   }
 
   void hold_in_bounds() {
@@ -673,8 +672,8 @@ class StepRunner {
     // slop apart in a pile are one island, so no part of a pile sleeps alone.
     for (const Candidate& cand : w_.candidates_) {
       if (cand.fixed) continue;
-      const std::uint32_t a = root(w_.position_in_active_[cand.lower]);
-      const std::uint32_t b = root(w_.position_in_active_[cand.upper]);
+      const std::uint32_t a = root(cand.lower_pos);
+      const std::uint32_t b = root(cand.upper_pos);
       if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
     auto& island_ready = w_.sleep_ready_;

@@ -61,8 +61,10 @@ struct Body {
 // awake body; `upper` another awake body later in the processing order, or (when
 // `fixed`) a static or sleeping body.
 struct Candidate {
-  std::uint32_t lower;
-  std::uint32_t upper;
+  std::uint32_t lower;      // slot
+  std::uint32_t upper;      // slot
+  std::uint32_t lower_pos;  // position of `lower` in the processing order
+  std::uint32_t upper_pos;  // position of `upper` there (unused when `fixed`)
   bool fixed;
 };
 
@@ -121,13 +123,12 @@ class WorldImpl {
   std::vector<BodyPair> active_pairs_;
   std::vector<std::uint32_t> overlaps_;
   std::vector<Candidate> candidates_;
-  std::vector<std::uint32_t> first_candidate_;     // per active position: CSR offsets
-  std::vector<std::uint32_t> position_in_active_;  // slot -> position in active_
+  std::vector<std::uint32_t> first_candidate_;  // per active position: CSR offsets
   std::vector<ContactRecord> contacts_;
   std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
   std::vector<std::uint8_t> contact_support_;
-  std::vector<std::uint8_t> supported_;
+  std::vector<std::uint8_t> supported_;  // per position in the processing order
   std::vector<Vec2> step_velocity_;      // velocity at the end of the free motion
   std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
   std::vector<std::uint32_t> to_wake_;

@@ -60,7 +60,6 @@ class UniformGrid {
   mutable std::vector<std::uint32_t> group_start_;
   std::vector<std::uint32_t> cell_of_;  // per box: its cell, or UINT32_MAX if large
   std::vector<std::uint32_t> large_;    // boxes too big for the cells, ascending
-  mutable std::vector<std::uint32_t> scratch_;
   std::vector<double> extents_;
   std::vector<std::uint32_t> fill_;
 };

@@ -53,6 +53,14 @@ Contact collide_circles(Vec2 c1, double r1, Vec2 c2, double r2);
 // The normal points from the circle toward the box.
 Contact collide_circle_box(Vec2 center, double radius, const Aabb& box);
 
+// The restitution a contact gets: none when it closes slower than rest_speed (a
+// resting contact, which then comes to rest exactly), else the material's. The one
+// rule for swept bounces, contact impulses and apply_restitution alike.
+constexpr double effective_restitution(double approach_speed, double restitution,
+                                       double rest_speed) {
+  return approach_speed < rest_speed ? 0.0 : restitution;
+}
+
 // Restitution of one contact along unit normal n (from body 1 toward body 2).
 // inv_mass 0 is a static body. If the bodies approach, the normal component of the
 // relative velocity is reflected and scaled by e (or zeroed below rest_speed), the
