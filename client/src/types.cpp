@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "client/connection_state.h"
+#include "wire.pb.h"
+#include "wire/messages.h"
 
 namespace client {
 
@@ -18,34 +20,17 @@ const BodyState* Snapshot::find(std::uint64_t body_id) const {
   return scan == bodies.end() ? nullptr : &*scan;
 }
 
-const char* to_string(ErrorCode code) {
-  switch (code) {
-    case ErrorCode::Unspecified:
-      return "ERROR_UNSPECIFIED";
-    case ErrorCode::ProtocolVersion:
-      return "ERROR_PROTOCOL_VERSION";
-    case ErrorCode::BadToken:
-      return "ERROR_BAD_TOKEN";
-    case ErrorCode::ServerFull:
-      return "ERROR_SERVER_FULL";
-    case ErrorCode::MessageTooLarge:
-      return "ERROR_MESSAGE_TOO_LARGE";
-    case ErrorCode::Malformed:
-      return "ERROR_MALFORMED";
-    case ErrorCode::UnexpectedMessage:
-      return "ERROR_UNEXPECTED_MESSAGE";
-    case ErrorCode::InvalidInput:
-      return "ERROR_INVALID_INPUT";
-    case ErrorCode::TickTooFarAhead:
-      return "ERROR_TICK_TOO_FAR_AHEAD";
-    case ErrorCode::TooSlow:
-      return "ERROR_TOO_SLOW";
-    case ErrorCode::ShuttingDown:
-      return "ERROR_SHUTTING_DOWN";
-    case ErrorCode::NoSpawn:
-      return "ERROR_NO_SPAWN";
-  }
-  return "ERROR_UNKNOWN";
+// The client's ErrorCode mirrors the .proto's value for value; the names come from
+// the .proto itself (wire::error_code_name), so the two ends never spell one apart.
+static_assert(static_cast<int>(ErrorCode::Unspecified) == physics::wire::ERROR_UNSPECIFIED);
+static_assert(static_cast<int>(ErrorCode::ProtocolVersion) ==
+              physics::wire::ERROR_PROTOCOL_VERSION);
+static_assert(static_cast<int>(ErrorCode::TooSlow) == physics::wire::ERROR_TOO_SLOW);
+static_assert(static_cast<int>(ErrorCode::NoSpawn) == physics::wire::ERROR_NO_SPAWN);
+
+std::string_view to_string(ErrorCode code) {
+  const std::string_view name = wire::error_code_name(static_cast<physics::wire::ErrorCode>(code));
+  return name.empty() ? std::string_view("ERROR_UNKNOWN") : name;
 }
 
 const char* to_string(ConnectionState state) {

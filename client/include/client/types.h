@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace client {
@@ -97,7 +98,7 @@ enum class ErrorCode : std::uint32_t {
   NoSpawn = 11,
 };
 
-const char* to_string(ErrorCode code);
+std::string_view to_string(ErrorCode code);
 
 // An Error message as the server sent it.
 struct ServerError {
