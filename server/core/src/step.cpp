@@ -145,12 +145,14 @@ class StepRunner {
     w_.step_velocity_.resize(n);
     w_.step_displacement_.resize(n);
     bool any_friction = false;
+    any_contact_friction_ = false;
     any_active_box_ = false;
     any_active_circle_ = false;
     for (std::size_t p = 0; p < n; ++p) {
       Body& b = body(w_.active_[p]);
       b.correction = {};
       any_friction = any_friction || b.friction.x != 0.0 || b.friction.y != 0.0;
+      any_contact_friction_ = any_contact_friction_ || b.contact_friction > 0.0;
       any_active_box_ = any_active_box_ || b.shape == Shape::Box;
       any_active_circle_ = any_active_circle_ || b.shape == Shape::Circle;
       const Vec2 a = gravity_on_ ? b.acceleration + s_.gravity : b.acceleration;
@@ -171,6 +173,10 @@ class StepRunner {
       w_.step_displacement_[p] = d;
     }
     w_.counters.bodies_integrated += n;
+    if (any_contact_friction_) {
+      w_.step_start_.resize(n);
+      for (std::size_t p = 0; p < n; ++p) w_.step_start_[p] = body(w_.active_[p]).position;
+    }
     if (any_friction) ++w_.counters.friction_passes;
     if (gravity_on_) ++w_.counters.gravity_passes;
   }
@@ -267,6 +273,7 @@ class StepRunner {
       double level = 0.0;
       double restitution = 0.0;
       std::uint32_t hit_body = kNone;
+      std::uint32_t hit_candidate = kNone;
       for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
         const Candidate& cand = w_.candidates_[c];
         if (!cand.fixed) break;  // fixed candidates come first
@@ -281,6 +288,7 @@ class StepRunner {
           level = target;
           restitution = mix_restitution(b.restitution, o.restitution);
           hit_body = cand.upper;
+          hit_candidate = c;
         }
       }
       if (!(first_t < kInfinity)) return;
@@ -310,6 +318,14 @@ class StepRunner {
         // acceleration pressed into the support over the step, not just until impact.
         const double pressed = (path.v1 > 0.0) == (v_hit > 0.0) ? path.v1 : v_hit;
         path = {path.integrator, touching, pressed, 0.0, 0.0, left, touching, pressed};
+        // The contact is recorded here, with its true normal: on a curved surface
+        // (a circle, a box's corner) the move on the other axis can leave the shapes
+        // a hair apart, and a contact found only by overlap would then be missed,
+        // the pressed velocity never removed, and the body would hang on the curve
+        // gathering speed instead of sliding off it.
+        component(b.position, axis) = touching;
+        const Vec2 n = touching_normal(b, body(hit_body), axis, inside < 0.0 ? -1.0 : 1.0);
+        record_contact(hit_candidate, n, dot(n, up_));
         return;
       }
       const AxisMotion rest =
@@ -318,6 +334,32 @@ class StepRunner {
               : AxisMotion{level + v_out * left, v_out};
       path = {path.integrator, level, v_out, path.a, path.k, left, rest.position, rest.velocity};
     }
+  }
+
+  // The unit normal from `mover` toward `obstacle` where they touch: along the line of
+  // centres for two circles, from a circle's centre to the nearest point of a box,
+  // and along the swept axis (in the direction of travel, `toward`) for two faces.
+  static Vec2 touching_normal(const Body& mover, const Body& obstacle, int axis, double toward) {
+    Vec2 along{};
+    component(along, axis) = toward;
+    Vec2 d{};
+    if (mover.shape == Shape::Circle && obstacle.shape == Shape::Circle) {
+      d = obstacle.position - mover.position;
+    } else if (mover.shape == Shape::Circle) {
+      const Aabb box = obstacle.bounds();
+      d = Vec2{std::clamp(mover.position.x, box.min.x, box.max.x),
+               std::clamp(mover.position.y, box.min.y, box.max.y)} -
+          mover.position;
+    } else if (obstacle.shape == Shape::Circle) {
+      const Aabb box = mover.bounds();
+      d = obstacle.position - Vec2{std::clamp(obstacle.position.x, box.min.x, box.max.x),
+                                   std::clamp(obstacle.position.y, box.min.y, box.max.y)};
+    } else {
+      return along;
+    }
+    const double len = length(d);
+    // A centre inside the other shape (only by rounding): the direction of travel.
+    return len > 0.0 ? d * (1.0 / len) : along;
   }
 
   // How close two bodies must be after the first pass to be worth another: within
@@ -451,6 +493,9 @@ class StepRunner {
     if (depth == 0.0 && !(push > 0.0)) return false;
     a.position -= n * (push * wa);
     b.position += n * (push * wb);
+    if (any_contact_friction_ && a.contact_friction > 0.0 && b.contact_friction > 0.0) {
+      hold_by_static_friction(cand, a, b, n, push, wa, wb);
+    }
     // Only pushes against something immovable (a static or sleeping body, or a
     // supported one) may cancel velocity below; a push shared by two free bodies
     // is the restitution phase's to turn into equal and opposite impulses.
@@ -458,6 +503,26 @@ class StepRunner {
     if (wb == 1.0) b.correction += n * push;
     ++w_.counters.contacts;
     return depth > 0.0;
+  }
+
+  // Static friction in the position passes (as in position-based dynamics, Mueller
+  // et al., "Detailed Rigid Body Simulation with Extended Position Based Dynamics"):
+  // a push out along the normal turns the straight-down sink of a body resting on a
+  // slope into a slide down it, a creep of g*h*h/2*sin(angle) every step that the
+  // velocity pass cannot undo. When the pair's tangential displacement over the
+  // sub-step is within the friction cone (at most mu times the push), it is undone:
+  // a body on a slope no steeper than atan(mu) stays where it was.
+  void hold_by_static_friction(const Candidate& cand, Body& a, Body& b, Vec2 n, double push,
+                               double wa, double wb) {
+    const Vec2 moved_a = a.position - w_.step_start_[cand.lower_pos];
+    const Vec2 moved_b = cand.fixed ? Vec2{} : b.position - w_.step_start_[cand.upper_pos];
+    const Vec2 relative = moved_b - moved_a;
+    const Vec2 slide = relative - n * dot(relative, n);
+    const double mu = mix_contact_friction(a.contact_friction, b.contact_friction);
+    if (!(length(slide) <= mu * push)) return;
+    a.position += slide * wa;
+    b.position -= slide * wb;
+    ++w_.counters.friction_holds;
   }
 
   // Marks candidate c as a contact with normal n; the restitution phase gathers
@@ -699,6 +764,7 @@ class StepRunner {
   bool shock_;
   bool any_active_box_ = false;
   bool any_active_circle_ = false;
+  bool any_contact_friction_ = false;
   bool order_changed_ = true;
 };
 

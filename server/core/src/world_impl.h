@@ -131,6 +131,7 @@ class WorldImpl {
   std::vector<std::uint8_t> supported_;  // per position in the processing order
   std::vector<Vec2> step_velocity_;      // velocity at the end of the free motion
   std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
+  std::vector<Vec2> step_start_;         // position at the start of the sub-step (friction)
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;

@@ -18,6 +18,7 @@ struct StageCounters {
   std::uint64_t circle_box_tests = 0;
   std::uint64_t contacts = 0;           // overlapping pairs resolved
   std::uint64_t swept_hits = 0;         // time-of-impact stops against static bodies
+  std::uint64_t friction_holds = 0;     // contacts held in place by static friction
   std::uint64_t broadphase_reuses = 0;  // sub-steps that reused the last candidate pairs
   std::uint64_t restitution_passes = 0;
   std::uint64_t sleeping_bodies_skipped = 0;
