@@ -28,20 +28,6 @@ constexpr int kSettleSteps = 1800;  // 30 s
 constexpr int kWatchSteps = 600;    // 10 s more
 constexpr double kMaxOverlap = 0.01;
 
-// A fixed linear congruential generator (Knuth's MMIX constants): the same rain on
-// every platform and build.
-class Rain {
- public:
-  double uniform(double lo, double hi) {
-    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double unit = static_cast<double>(state_ >> 11) * 0x1.0p-53;
-    return lo + (hi - lo) * unit;
-  }
-
- private:
-  std::uint64_t state_ = 12345;
-};
-
 // The container and the circles, all with contact friction `mu`.
 void build_pile(World& world, double mu) {
   const auto fixed = [&](Vec2 centre, Vec2 half) {

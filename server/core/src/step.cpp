@@ -80,13 +80,16 @@ class StepRunner {
     w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
     w_.contact_normal_.resize(w_.candidates_.size());
     w_.contact_support_.resize(w_.candidates_.size());
+    w_.contact_gap_.resize(w_.candidates_.size());
     move(1);
     if (any_active_box_) collide_boxes_on(1);
     move(0);
     collide_on_x();
     {
       PhaseTimer t(s_.profile, w_.profile.resolve);
+      if (gravity_on_) before_contacts();
       restitution();
+      if (gravity_on_) update_held();
     }
     {
       PhaseTimer t(s_.profile, w_.profile.sleep);
@@ -162,6 +165,18 @@ class StepRunner {
           integrate_axis(s_.integrator, b.position.y, b.velocity.y, a.y, b.friction.y, h_);
       Vec2 v{mx.velocity, my.velocity};
       Vec2 d{mx.position - b.position.x, my.position - b.position.y};
+      if (b.held > 0.0) {
+        // A resting body moves as if its support still held it (it does not sink
+        // into it), but its velocity keeps all of gravity: the contacts must take
+        // that away again, which is how the next step knows the support is there.
+        const Vec2 moving = moving_acceleration(b);
+        d = {integrate_axis(s_.integrator, b.position.x, b.velocity.x, moving.x, b.friction.x, h_)
+                     .position -
+                 b.position.x,
+             integrate_axis(s_.integrator, b.position.y, b.velocity.y, moving.y, b.friction.y, h_)
+                     .position -
+                 b.position.y};
+      }
       const double speed = length(v);
       if (speed > s_.max_speed) {  // the world stays finite: speeds are capped
         const double scale = s_.max_speed / speed;
@@ -179,6 +194,12 @@ class StepRunner {
     }
     if (any_friction) ++w_.counters.friction_passes;
     if (gravity_on_) ++w_.counters.gravity_passes;
+  }
+
+  // The acceleration a body moves by: gravity less what its contacts held up last
+  // sub-step (see Body::held).
+  Vec2 moving_acceleration(const Body& b) const {
+    return gravity_on_ ? b.acceleration + s_.gravity + up_ * b.held : b.acceleration;
   }
 
   // Candidate pairs for the whole sub-step: boxes fattened by how far each body can
@@ -256,8 +277,7 @@ class StepRunner {
         component(b.velocity, axis) = v_end;
         continue;
       }
-      const double a =
-          component(b.acceleration, axis) + (gravity_on_ ? component(s_.gravity, axis) : 0.0);
+      const double a = component(moving_acceleration(b), axis);
       AxisPath path{
           s_.integrator, x0,   component(b.velocity, axis), a, component(b.friction, axis), h_,
           x_end,         v_end};
@@ -437,23 +457,31 @@ class StepRunner {
     if (any_active_box_) collide_boxes_on(0);
     if (!any_active_circle_ && !(any_active_box_ && w_.fixed_circles_ > 0)) return;
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
+    // Shapes are tested grown by the near-miss margin: a pair a hair apart (as the
+    // last push left it) is still a contact for the velocity pass.
+    const double margin = near_miss_margin();
     resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
       Contact contact;
       if (a.shape == Shape::Circle && b.shape == Shape::Circle) {
         ++w_.counters.circle_circle_tests;
-        contact = collide_circles(a.position, a.radius, b.position, b.radius);
+        contact = collide_circles(a.position, a.radius + margin, b.position, b.radius);
       } else if (a.shape == Shape::Circle) {
         ++w_.counters.circle_box_tests;
-        contact = collide_circle_box(a.position, a.radius, b.bounds());
+        contact = collide_circle_box(a.position, a.radius + margin, b.bounds());
       } else if (b.shape == Shape::Circle) {
         ++w_.counters.circle_box_tests;
-        contact = collide_circle_box(b.position, b.radius, a.bounds());
+        contact = collide_circle_box(b.position, b.radius + margin, a.bounds());
         contact.normal = -contact.normal;
       } else {
         return false;
       }
       if (!contact.colliding) return false;
-      return separate(c, a, b, contact.normal, contact.penetration);
+      const double depth = contact.penetration - margin;
+      if (depth < 0.0) {
+        record_near_miss(c, contact.normal, -depth);
+        return false;
+      }
+      return separate(c, a, b, contact.normal, depth);
     });
   }
 
@@ -525,10 +553,36 @@ class StepRunner {
     ++w_.counters.friction_holds;
   }
 
+  // Two bodies at rest on each other are left a slop apart by the push that
+  // separated them. If that pair were no contact in the next step, a column of
+  // bodies falling together would have no contact inside it every other step: the
+  // velocity pass would stop only its bottom, and the column would breathe by a
+  // millimetre and 0.1 m/s a step forever, never asleep. Pairs closer than this
+  // margin are resting contacts for the velocity pass, like touching ones (Box2D
+  // v3's speculative contacts are the same idea; a gap within the slop is closed
+  // by no velocity).
+  double near_miss_margin() const { return 2.0 * s_.slop; }
+
+  void record_near_miss(std::uint32_t c, Vec2 n, double gap) {
+    if (w_.contact_of_candidate_[c] != kNone && w_.contact_gap_[c] == 0.0) return;
+    record_contact(c, n, dot(n, up_));
+    w_.contact_gap_[c] = gap;
+  }
+
+  // A near miss is a contact only while the pair rests on each other (approaching
+  // no faster than the rest speed): a faster approach is a collision, which the
+  // next step finds as an overlap and bounces with the restitution.
+  bool resting_near_miss(std::uint32_t c) {
+    const Candidate& cand = w_.candidates_[c];
+    const Vec2 vb = cand.fixed ? Vec2{} : body(cand.upper).velocity;
+    return dot(vb - body(cand.lower).velocity, w_.contact_normal_[c]) >= -rest_speed_;
+  }
+
   // Marks candidate c as a contact with normal n; the restitution phase gathers
   // the marked candidates in candidate order (so no sort is needed).
   void record_contact(std::uint32_t c, Vec2 n, double up) {
     w_.contact_of_candidate_[c] = 1;
+    w_.contact_gap_[c] = 0.0;
     w_.contact_normal_[c] = n;
     w_.contact_support_[c] = std::fabs(up) > kSupportCosine;
   }
@@ -539,9 +593,9 @@ class StepRunner {
     auto& contacts = w_.contacts_;
     contacts.clear();
     for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
-      if (w_.contact_of_candidate_[c] != kNone) {
-        contacts.push_back({c, w_.contact_normal_[c], w_.contact_support_[c] != 0});
-      }
+      if (w_.contact_of_candidate_[c] == kNone) continue;
+      if (w_.contact_gap_[c] > 0.0 && !resting_near_miss(c)) continue;
+      contacts.push_back({c, w_.contact_normal_[c], w_.contact_support_[c] != 0});
     }
     if (contacts.empty()) return;
     ++w_.counters.restitution_passes;
@@ -562,6 +616,10 @@ class StepRunner {
       w_.contact_warm_[i] =
           s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
       if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
+      if (gravity_on_) {
+        w_.in_contact_[cand.lower_pos] = 1;
+        if (!cand.fixed) w_.in_contact_[cand.upper_pos] = 1;
+      }
     }
     cancel_velocity_into_corrections();
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
@@ -629,6 +687,34 @@ class StepRunner {
     a.velocity -= t * (impulse * wa);
     if (!cand.fixed) b.velocity += t * (impulse * wb);
     return std::fabs(impulse) > 1.0e-12;
+  }
+
+  void before_contacts() {
+    const std::size_t n = w_.active_.size();
+    w_.velocity_before_contacts_.resize(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      w_.velocity_before_contacts_[p] = body(w_.active_[p]).velocity;
+    }
+    w_.in_contact_.assign(n, 0);
+  }
+
+  // What the contacts did to a body's velocity this sub-step, along "up", is how
+  // much of gravity they held; the next sub-step applies it as a force from the
+  // start (the support a resting body will get again). Only for a body that is
+  // resting after its contacts (no faster than the rest speed): an impact is no
+  // support. Between 0 and |g|: contacts hold a body up, never pull it, and never
+  // hold it up harder than gravity pulls it down.
+  void update_held() {
+    const double g = length(s_.gravity);
+    for (std::size_t p = 0; p < w_.active_.size(); ++p) {
+      Body& b = body(w_.active_[p]);
+      if (!w_.in_contact_[p] || length(b.velocity) > rest_speed_) {
+        b.held = 0.0;
+        continue;
+      }
+      const double lift = dot(b.velocity - w_.velocity_before_contacts_[p], up_) / h_;
+      b.held = std::clamp(lift, 0.0, g);
+    }
   }
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
@@ -751,6 +837,7 @@ class StepRunner {
       Body& b = body(w_.active_[p]);
       b.awake = false;
       b.velocity = {};
+      b.held = 0.0;
       w_.lists_dirty_ = true;
     }
   }

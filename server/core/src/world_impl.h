@@ -51,6 +51,10 @@ struct Body {
   Vec2 friction{};
   double contact_friction = 0.0;
   double still_time = 0.0;  // seconds it has stayed near still_anchor
+  // How much of gravity its contacts held up in the last sub-step (m/s^2, from 0
+  // to |g|), applied as a force in the next one so that a resting body does not
+  // sink into its supports and get pushed back out every step.
+  double held = 0.0;
   Vec2 still_anchor{};
 
   Aabb bounds() const { return {position - half, position + half}; }
@@ -128,10 +132,13 @@ class WorldImpl {
   std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
   std::vector<std::uint8_t> contact_support_;
+  std::vector<double> contact_gap_;      // per candidate, when marked: 0, or the gap of a near miss
   std::vector<std::uint8_t> supported_;  // per position in the processing order
   std::vector<Vec2> step_velocity_;      // velocity at the end of the free motion
   std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
-  std::vector<Vec2> step_start_;         // position at the start of the sub-step (friction)
+  std::vector<Vec2> velocity_before_contacts_;  // per position, when gravity is on
+  std::vector<std::uint8_t> in_contact_;        // per position
+  std::vector<Vec2> step_start_;                // position at the start of the sub-step (friction)
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
