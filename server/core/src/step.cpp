@@ -564,8 +564,15 @@ class StepRunner {
   double near_miss_margin() const { return 2.0 * s_.slop; }
 
   void record_near_miss(std::uint32_t c, Vec2 n, double gap) {
+    // A near miss carries weight like a touching contact: the support marks pass
+    // through it, or a body resting a slop above its support would not count as
+    // supported, and what it carries would push it down into the pile.
+    const double up = dot(n, up_);
+    double wa = 1.0;
+    double wb = 1.0;
+    carry(w_.candidates_[c], up, wa, wb);
     if (w_.contact_of_candidate_[c] != kNone && w_.contact_gap_[c] == 0.0) return;
-    record_contact(c, n, dot(n, up_));
+    record_contact(c, n, up);
     w_.contact_gap_[c] = gap;
   }
 
