@@ -61,7 +61,8 @@ class StepRunner {
         gravity_on_(s_.gravity.x != 0.0 || s_.gravity.y != 0.0),
         up_(gravity_on_ ? -s_.gravity * (1.0 / length(s_.gravity)) : Vec2{0.0, 1.0}),
         rest_speed_(s_.rest_speed > 0.0 ? s_.rest_speed : 2.0 * length(s_.gravity) * h),
-        shock_(s_.shock_propagation && gravity_on_) {}
+        shock_(s_.shock_propagation && gravity_on_),
+        hold_(s_.hold_resting_support && gravity_on_) {}
 
   void run() {
     if (w_.lists_dirty_) w_.rebuild_lists();
@@ -87,9 +88,9 @@ class StepRunner {
     collide_on_x();
     {
       PhaseTimer t(s_.profile, w_.profile.resolve);
-      if (gravity_on_) before_contacts();
+      if (hold_) before_contacts();
       restitution();
-      if (gravity_on_) update_held();
+      if (hold_) update_held();
     }
     {
       PhaseTimer t(s_.profile, w_.profile.sleep);
@@ -433,20 +434,25 @@ class StepRunner {
       ++w_.counters.box_box_tests;
       const Aabb ba = a.bounds();
       const Aabb bb = b.bounds();
-      if (!boxes_intersect(ba, bb)) return false;
       // Touching on the other axis only (side by side): that axis resolves it.
       const double across = std::min(component(ba.max, other), component(bb.max, other)) -
                             std::max(component(ba.min, other), component(bb.min, other));
       if (across <= 0.5 * s_.slop) return false;
       const double ca = component(a.position, axis);
       const double cb = component(b.position, axis);
+      const Vec2 n = (cb >= ca) ? unit : -unit;  // from a toward b
+      const double gap = std::min(component(ba.max, axis), component(bb.max, axis)) -
+                         std::max(component(ba.min, axis), component(bb.min, axis));
+      if (gap < 0.0) {  // apart on this axis: a near miss, or nothing
+        if (-gap <= near_miss_margin()) record_near_miss(c, n, -gap);
+        return false;
+      }
       const double depth =
           axis_penetration(ca, component(a.half, axis), cb, component(b.half, axis));
       // Resolve on this axis only if it is the shallower one. Otherwise a box that
       // sank a little into a floor tile would be thrown sideways by the tile's
       // width (catching on seams), or lifted by a neighbour's height.
       if (depth > across) return false;
-      const Vec2 n = (cb >= ca) ? unit : -unit;  // from a toward b
       return separate(c, a, b, n, depth);
     });
   }
@@ -623,7 +629,7 @@ class StepRunner {
       w_.contact_warm_[i] =
           s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
       if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
-      if (gravity_on_) {
+      if (hold_) {
         w_.in_contact_[cand.lower_pos] = 1;
         if (!cand.fixed) w_.in_contact_[cand.upper_pos] = 1;
       }
@@ -856,6 +862,7 @@ class StepRunner {
   Vec2 up_;
   double rest_speed_;
   bool shock_;
+  bool hold_;
   bool any_active_box_ = false;
   bool any_active_circle_ = false;
   bool any_contact_friction_ = false;

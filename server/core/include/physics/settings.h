@@ -42,6 +42,10 @@ struct WorldSettings {
   // Shock propagation: with gravity, a body resting on support is immovable for
   // the bodies above it. Makes stacks exact in one pass (docs/ACCURACY.md).
   bool shock_propagation = true;
+  // With gravity, what a resting body's contacts held up in one sub-step is
+  // applied as a force in the next, so resting bodies do not sink into their
+  // supports and get pushed back out every step (docs/PHYSICS.md, "Resting contact").
+  bool hold_resting_support = true;
   // A contact whose closing speed is below this keeps no bounce (resting contact).
   // 0 means "two steps of gravity": 2*|g|*dt.
   double rest_speed = 0.0;
