@@ -79,7 +79,6 @@ class StepRunner {
     w_.contacts_.clear();
     w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
     w_.contact_normal_.resize(w_.candidates_.size());
-    w_.contact_support_.resize(w_.candidates_.size());
     move(1);
     if (any_active_box_) collide_boxes_on(1);
     move(0);
@@ -419,18 +418,19 @@ class StepRunner {
   // on support (a fixed body below it, or a supported body) is immovable for the
   // bodies it carries, for contacts within 60 degrees of vertical. wa and wb are
   // the inverse-mass weights of the pair; the carrier's becomes zero.
-  void carry(const Candidate& cand, double up, double& wa, double& wb) {
+  void carry(bool fixed, std::uint32_t lower_pos, std::uint32_t upper_pos, double up, double& wa,
+             double& wb) {
     auto& supported = w_.supported_;
-    if (cand.fixed) {
-      if (up < -kSupportCosine) supported[cand.lower_pos] = 1;
+    if (fixed) {
+      if (up < -kSupportCosine) supported[lower_pos] = 1;
     } else if (!shock_) {
       return;
-    } else if (up > kSupportCosine && supported[cand.lower_pos]) {
+    } else if (up > kSupportCosine && supported[lower_pos]) {
       wa = 0.0;
-      supported[cand.upper_pos] = 1;
-    } else if (up < -kSupportCosine && supported[cand.upper_pos]) {
+      supported[upper_pos] = 1;
+    } else if (up < -kSupportCosine && supported[upper_pos]) {
       wb = 0.0;
-      supported[cand.lower_pos] = 1;
+      supported[lower_pos] = 1;
     }
   }
 
@@ -442,11 +442,11 @@ class StepRunner {
     const Candidate& cand = w_.candidates_[c];
     double wa = a.inv_mass;
     double wb = cand.fixed ? 0.0 : b.inv_mass;
-    carry(cand, up, wa, wb);
+    carry(cand.fixed, cand.lower_pos, cand.upper_pos, up, wa, wb);
     const double sum = wa + wb;
     wa /= sum;
     wb /= sum;
-    record_contact(c, n, up);
+    record_contact(c, n);
     const double push = depth + s_.slop;
     if (depth == 0.0 && !(push > 0.0)) return false;
     a.position -= n * (push * wa);
@@ -462,10 +462,9 @@ class StepRunner {
 
   // Marks candidate c as a contact with normal n; the restitution phase gathers
   // the marked candidates in candidate order (so no sort is needed).
-  void record_contact(std::uint32_t c, Vec2 n, double up) {
+  void record_contact(std::uint32_t c, Vec2 n) {
     w_.contact_of_candidate_[c] = 1;
     w_.contact_normal_[c] = n;
-    w_.contact_support_[c] = std::fabs(up) > kSupportCosine;
   }
 
   // The velocity component along each contact's normal is reflected and scaled by
@@ -473,74 +472,76 @@ class StepRunner {
   void restitution() {
     auto& contacts = w_.contacts_;
     contacts.clear();
+    // Gather the marked candidates in candidate order, with what the iterations read.
     for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
-      if (w_.contact_of_candidate_[c] != kNone) {
-        contacts.push_back({c, w_.contact_normal_[c], w_.contact_support_[c] != 0});
-      }
+      if (w_.contact_of_candidate_[c] == kNone) continue;
+      const Candidate& cand = w_.candidates_[c];
+      const Body& a = body(cand.lower);
+      const Body& b = body(cand.upper);
+      ContactRecord k;
+      k.lower = cand.lower;
+      k.upper = cand.upper;
+      k.lower_pos = cand.lower_pos;
+      k.upper_pos = cand.upper_pos;
+      k.normal = w_.contact_normal_[c];
+      k.up = dot(k.normal, up_);
+      k.inv_mass_lower = a.inv_mass;
+      k.inv_mass_upper = cand.fixed ? 0.0 : b.inv_mass;
+      const double closing = dot(b.velocity - a.velocity, k.normal);
+      const double e = mix_restitution(a.restitution, b.restitution);
+      k.target = closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
+      k.mu = mix_contact_friction(a.contact_friction, b.contact_friction);
+      k.warm = s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
+      k.impulse = 0.0;
+      k.tangent_impulse = 0.0;
+      k.fixed = cand.fixed;
+      if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, k, closing);
+      contacts.push_back(k);
     }
     if (contacts.empty()) return;
     ++w_.counters.restitution_passes;
-    w_.contact_targets_.resize(contacts.size());
-    w_.contact_impulses_.assign(contacts.size(), 0.0);
-    w_.contact_warm_.resize(contacts.size());
-    w_.contact_tangent_impulses_.assign(contacts.size(), 0.0);
-    w_.contact_mu_.resize(contacts.size());
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const Candidate& cand = w_.candidates_[contacts[i].candidate];
-      const Body& a = body(cand.lower);
-      const Body& b = body(cand.upper);
-      const double closing = dot(b.velocity - a.velocity, contacts[i].normal);
-      const double e = mix_restitution(a.restitution, b.restitution);
-      w_.contact_targets_[i] =
-          closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
-      w_.contact_mu_[i] = mix_contact_friction(a.contact_friction, b.contact_friction);
-      w_.contact_warm_[i] =
-          s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
-      if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
-    }
     cancel_velocity_into_corrections();
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
       bool changed = false;
-      for (std::size_t i = 0; i < contacts.size(); ++i) {
-        const Candidate& cand = w_.candidates_[contacts[i].candidate];
-        Body& a = body(cand.lower);
-        Body& b = body(cand.upper);
-        const Vec2 n = contacts[i].normal;
-        double wa = a.inv_mass;
-        double wb = cand.fixed ? 0.0 : b.inv_mass;
-        carry(cand, dot(n, up_), wa, wb);
-        const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
+      for (ContactRecord& k : contacts) {
+        Body& a = body(k.lower);
+        Body& b = body(k.upper);
+        const Vec2 n = k.normal;
+        double wa = k.inv_mass_lower;
+        double wb = k.inv_mass_upper;
+        carry(k.fixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
+        const Vec2 vb = k.fixed ? Vec2{} : b.velocity;
         double closing = dot(vb - a.velocity, n);
         // An immovable supporter can stop the bodies it carries but never lift them:
         // its own motion away from them counts as zero. Otherwise a supported body
         // moving up hands its velocity to every body above it, all the way up a pile.
-        if (wa == 0.0 && !cand.fixed) closing += std::max(dot(a.velocity, n), 0.0);
-        if (wb == 0.0 && !cand.fixed) closing -= std::min(dot(b.velocity, n), 0.0);
+        if (wa == 0.0 && !k.fixed) closing += std::max(dot(a.velocity, n), 0.0);
+        if (wb == 0.0 && !k.fixed) closing -= std::min(dot(b.velocity, n), 0.0);
         if (wa + wb <= 0.0) continue;
         // Sequential impulses: the impulse accumulated on a contact may shrink again
         // but never pull (stay >= 0), so iterations converge to a velocity that
         // neither approaches nor separates from resting contacts.
-        double& total = w_.contact_impulses_[i];
-        if (iteration == 0 && w_.contact_warm_[i] > 0.0) {
+        double& total = k.impulse;
+        if (iteration == 0 && k.warm > 0.0) {
           // Warm start: begin from last step's impulse on this pair, so resting
           // contacts converge over steps instead of within one.
-          total = w_.contact_warm_[i];
+          total = k.warm;
           a.velocity -= n * (total * wa);
-          if (!cand.fixed) b.velocity += n * (total * wb);
+          if (!k.fixed) b.velocity += n * (total * wb);
           changed = true;
-          if (w_.contact_mu_[i] > 0.0) apply_contact_friction(i, a, b, wa, wb);
+          if (k.mu > 0.0) apply_contact_friction(k, a, b, wa, wb);
           continue;
         }
-        const double wanted = std::max(total + (w_.contact_targets_[i] - closing) / (wa + wb), 0.0);
+        const double wanted = std::max(total + (k.target - closing) / (wa + wb), 0.0);
         const double impulse = wanted - total;
         if (impulse != 0.0) {
           total = wanted;
           a.velocity -= n * (impulse * wa);
-          if (!cand.fixed) b.velocity += n * (impulse * wb);
+          if (!k.fixed) b.velocity += n * (impulse * wb);
           changed = changed || std::fabs(impulse) > 1.0e-12;
         }
-        if (w_.contact_mu_[i] > 0.0) changed = apply_contact_friction(i, a, b, wa, wb) || changed;
+        if (k.mu > 0.0) changed = apply_contact_friction(k, a, b, wa, wb) || changed;
       }
       if (!changed && iteration > 0) break;
     }
@@ -549,34 +550,30 @@ class StepRunner {
 
   // Coulomb friction: the tangential impulse accumulated on a contact stays within
   // mu times its normal impulse (a contact that pushes nothing holds nothing).
-  bool apply_contact_friction(std::size_t i, Body& a, Body& b, double wa, double wb) {
-    const Candidate& cand = w_.candidates_[w_.contacts_[i].candidate];
-    const Vec2 n = w_.contacts_[i].normal;
+  bool apply_contact_friction(ContactRecord& k, Body& a, Body& b, double wa, double wb) {
+    const Vec2 n = k.normal;
     const Vec2 t{-n.y, n.x};
-    const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
+    const Vec2 vb = k.fixed ? Vec2{} : b.velocity;
     const double sliding = dot(vb - a.velocity, t);
-    const double limit = w_.contact_mu_[i] * w_.contact_impulses_[i];
-    double& total = w_.contact_tangent_impulses_[i];
+    const double limit = k.mu * k.impulse;
+    double& total = k.tangent_impulse;
     const double wanted = std::clamp(total - sliding / (wa + wb), -limit, limit);
     const double impulse = wanted - total;
     if (impulse == 0.0) return false;
     total = wanted;
     a.velocity -= t * (impulse * wa);
-    if (!cand.fixed) b.velocity += t * (impulse * wb);
+    if (!k.fixed) b.velocity += t * (impulse * wb);
     return std::fabs(impulse) > 1.0e-12;
   }
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
   void remember_impulses() {
     for (std::uint32_t slot : w_.active_) w_.warm[slot].count = 0;
-    const auto& contacts = w_.contacts_;
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const double total = w_.contact_impulses_[i];
-      if (total <= 0.0) continue;
-      const Candidate& cand = w_.candidates_[contacts[i].candidate];
-      WarmImpulses& kept = w_.warm[cand.lower];
+    for (const ContactRecord& k : w_.contacts_) {
+      if (k.impulse <= 0.0) continue;
+      WarmImpulses& kept = w_.warm[k.lower];
       if (kept.count < WarmImpulses::kSlots) {
-        kept.entries[kept.count++] = {cand.upper, body(cand.upper).generation, total};
+        kept.entries[kept.count++] = {k.upper, body(k.upper).generation, k.impulse};
       }
     }
   }
@@ -603,7 +600,7 @@ class StepRunner {
   // A sleeping body wakes when it is hit: harder than a resting contact presses
   // (from above), or at all from the side or below.
   void wake_if_hit(const Candidate& cand, const ContactRecord& contact, double closing) {
-    const bool resting_on_it = dot(contact.normal, up_) < -kSupportCosine;
+    const bool resting_on_it = contact.up < -kSupportCosine;
     if (-closing > wake_speed(resting_on_it)) w_.to_wake_.push_back(cand.upper);
   }
   double wake_speed(bool resting_on_it) const {

@@ -68,11 +68,23 @@ struct Candidate {
   bool fixed;
 };
 
-// A pair found touching or overlapping, kept for the restitution phase.
+// A pair found touching or overlapping, with everything the restitution phase's
+// iterations read about it, so that they walk one array and the two bodies only.
 struct ContactRecord {
-  std::uint32_t candidate;
-  Vec2 normal;   // from lower toward upper
-  bool support;  // the normal is within 60 degrees of "up" (against gravity)
+  std::uint32_t lower;      // slot
+  std::uint32_t upper;      // slot
+  std::uint32_t lower_pos;  // positions in the processing order (upper_pos unused when fixed)
+  std::uint32_t upper_pos;
+  Vec2 normal;  // from lower toward upper
+  double up;    // dot(normal, up): the support test of shock propagation
+  double inv_mass_lower;
+  double inv_mass_upper;   // 0 when fixed
+  double target;           // the closing velocity the contact should end with
+  double warm;             // last sub-step's impulse on this pair (warm start)
+  double mu;               // contact friction, mixed
+  double impulse;          // accumulated normal impulse
+  double tangent_impulse;  // accumulated friction impulse
+  bool fixed;              // upper is a static or sleeping body
 };
 
 class WorldImpl {
@@ -127,18 +139,12 @@ class WorldImpl {
   std::vector<ContactRecord> contacts_;
   std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
-  std::vector<std::uint8_t> contact_support_;
-  std::vector<std::uint8_t> supported_;  // per position in the processing order
-  std::vector<Vec2> step_velocity_;      // velocity at the end of the free motion
-  std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
+  std::vector<std::uint8_t> supported_;              // per position in the processing order
+  std::vector<Vec2> step_velocity_;                  // velocity at the end of the free motion
+  std::vector<Vec2> step_displacement_;              // free-motion displacement this sub-step
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
-  std::vector<double> contact_targets_;
-  std::vector<double> contact_impulses_;
-  std::vector<double> contact_warm_;
-  std::vector<double> contact_tangent_impulses_;
-  std::vector<double> contact_mu_;
   std::vector<std::uint8_t> sleep_ready_;
   std::vector<std::uint32_t> island_parent_;
 };
