@@ -338,22 +338,27 @@ class StepRunner {
   template <typename Resolve>
   void resolve_passes(Resolve&& resolve) {
     auto& near_list = w_.near_candidates_;
-    near_list.clear();
+    const auto candidates = static_cast<std::uint32_t>(w_.candidates_.size());
+    near_list.resize(candidates);  // filled by index: no growth check per pair
+    std::uint32_t near_count = 0;
     for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
       bool moved = false;
-      const bool first = iteration == 0;
-      const std::size_t count = first ? w_.candidates_.size() : near_list.size();
-      for (std::size_t k = 0; k < count; ++k) {
-        const auto c = first ? static_cast<std::uint32_t>(k) : near_list[k];
-        const Candidate& cand = w_.candidates_[c];
-        Body& a = body(cand.lower);
-        Body& b = body(cand.upper);
-        if (first) {
+      if (iteration == 0) {
+        for (std::uint32_t c = 0; c < candidates; ++c) {
+          const Candidate& cand = w_.candidates_[c];
+          Body& a = body(cand.lower);
+          Body& b = body(cand.upper);
           if (!near(a, b)) continue;
-          near_list.push_back(c);
+          near_list[near_count++] = c;
+          moved = resolve(c, a, b) || moved;
         }
-        moved = resolve(c, a, b) || moved;
+      } else {
+        for (std::uint32_t k = 0; k < near_count; ++k) {
+          const std::uint32_t c = near_list[k];
+          const Candidate& cand = w_.candidates_[c];
+          moved = resolve(c, body(cand.lower), body(cand.upper)) || moved;
+        }
       }
       if (!moved) break;
     }
@@ -365,9 +370,10 @@ class StepRunner {
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
     const int other = 1 - axis;
     const Vec2 unit = axis == 0 ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
+    std::uint64_t tests = 0;  // counted here, added once: the loop keeps it in a register
     resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
       if (a.shape != Shape::Box || b.shape != Shape::Box) return false;
-      ++w_.counters.box_box_tests;
+      ++tests;
       const Aabb ba = a.bounds();
       const Aabb bb = b.bounds();
       if (!boxes_intersect(ba, bb)) return false;
@@ -386,6 +392,7 @@ class StepRunner {
       const Vec2 n = (cb >= ca) ? unit : -unit;  // from a toward b
       return separate(c, a, b, n, depth);
     });
+    w_.counters.box_box_tests += tests;
   }
 
   // The X phase: boxes on X, then every pair with a circle along its normal (a
@@ -394,16 +401,18 @@ class StepRunner {
     if (any_active_box_) collide_boxes_on(0);
     if (!any_active_circle_ && !(any_active_box_ && w_.fixed_circles_ > 0)) return;
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
+    std::uint64_t circle_tests = 0;
+    std::uint64_t mixed_tests = 0;
     resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
       Contact contact;
       if (a.shape == Shape::Circle && b.shape == Shape::Circle) {
-        ++w_.counters.circle_circle_tests;
+        ++circle_tests;
         contact = collide_circles(a.position, a.radius, b.position, b.radius);
       } else if (a.shape == Shape::Circle) {
-        ++w_.counters.circle_box_tests;
+        ++mixed_tests;
         contact = collide_circle_box(a.position, a.radius, b.bounds());
       } else if (b.shape == Shape::Circle) {
-        ++w_.counters.circle_box_tests;
+        ++mixed_tests;
         contact = collide_circle_box(b.position, b.radius, a.bounds());
         contact.normal = -contact.normal;
       } else {
@@ -412,6 +421,8 @@ class StepRunner {
       if (!contact.colliding) return false;
       return separate(c, a, b, contact.normal, contact.penetration);
     });
+    w_.counters.circle_circle_tests += circle_tests;
+    w_.counters.circle_box_tests += mixed_tests;
   }
 
   // Shock propagation, for both the position and the velocity passes: a body resting
