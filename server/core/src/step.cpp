@@ -484,51 +484,43 @@ class StepRunner {
     auto& contacts = w_.contacts_;
     contacts.clear();
     // Gather the marked candidates in candidate order, with what the iterations read.
-    for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
-      if (w_.contact_of_candidate_[c] == kNone) continue;
-      const Candidate& cand = w_.candidates_[c];
-      const Body& a = body(cand.lower);
-      const Body& b = body(cand.upper);
-      ContactRecord k;
-      k.lower = cand.lower;
-      k.upper = cand.upper;
-      k.lower_pos = cand.lower_pos;
-      k.upper_pos = cand.upper_pos;
-      k.normal = w_.contact_normal_[c];
-      k.up = dot(k.normal, up_);
-      k.inv_mass_lower = a.inv_mass;
-      k.inv_mass_upper = cand.fixed ? 0.0 : b.inv_mass;
-      const double closing = dot(b.velocity - a.velocity, k.normal);
-      const double e = mix_restitution(a.restitution, b.restitution);
-      k.target = closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
-      k.mu = mix_contact_friction(a.contact_friction, b.contact_friction);
-      k.warm = s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
-      k.impulse = 0.0;
-      k.tangent_impulse = 0.0;
-      k.fixed = cand.fixed;
-      if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, k, closing);
-      contacts.push_back(k);
+    // Candidates come grouped by their lower body's position p, and a body is never
+    // read again once its group is done (later groups hold only higher bodies), so
+    // its velocity is cancelled into its corrections right there, while it is in
+    // cache. With no contact at all every correction is zero and that changes nothing.
+    const double per_second = 1.0 / h_;
+    const auto active = static_cast<std::uint32_t>(w_.active_.size());
+    // The iterations read and write only awake bodies' velocities (a fixed body's
+    // counts as zero): they work on a dense copy by position, written back at the end.
+    auto& velocity = w_.solver_velocity_;
+    velocity.resize(active);
+    for (std::uint32_t p = 0; p < active; ++p) {
+      for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
+        if (w_.contact_of_candidate_[c] != kNone) gather_contact(c);
+      }
+      Body& b = body(w_.active_[p]);
+      cancel_velocity_into_correction(b, per_second);
+      velocity[p] = b.velocity;
     }
     if (contacts.empty()) return;
     ++w_.counters.restitution_passes;
-    cancel_velocity_into_corrections();
+    Vec2 unused{};  // what vb names for a fixed body; never read
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
       bool changed = false;
       for (ContactRecord& k : contacts) {
-        Body& a = body(k.lower);
-        Body& b = body(k.upper);
+        Vec2& va = velocity[k.lower_pos];
+        Vec2& vb = k.fixed ? unused : velocity[k.upper_pos];
         const Vec2 n = k.normal;
         double wa = k.inv_mass_lower;
         double wb = k.inv_mass_upper;
         carry(k.fixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
-        const Vec2 vb = k.fixed ? Vec2{} : b.velocity;
-        double closing = dot(vb - a.velocity, n);
+        double closing = dot((k.fixed ? Vec2{} : vb) - va, n);
         // An immovable supporter can stop the bodies it carries but never lift them:
         // its own motion away from them counts as zero. Otherwise a supported body
         // moving up hands its velocity to every body above it, all the way up a pile.
-        if (wa == 0.0 && !k.fixed) closing += std::max(dot(a.velocity, n), 0.0);
-        if (wb == 0.0 && !k.fixed) closing -= std::min(dot(b.velocity, n), 0.0);
+        if (wa == 0.0 && !k.fixed) closing += std::max(dot(va, n), 0.0);
+        if (wb == 0.0 && !k.fixed) closing -= std::min(dot(vb, n), 0.0);
         if (wa + wb <= 0.0) continue;
         // Sequential impulses: the impulse accumulated on a contact may shrink again
         // but never pull (stay >= 0), so iterations converge to a velocity that
@@ -538,53 +530,87 @@ class StepRunner {
           // Warm start: begin from last step's impulse on this pair, so resting
           // contacts converge over steps instead of within one.
           total = k.warm;
-          a.velocity -= n * (total * wa);
-          if (!k.fixed) b.velocity += n * (total * wb);
+          va -= n * (total * wa);
+          if (!k.fixed) vb += n * (total * wb);
           changed = true;
-          if (k.mu > 0.0) apply_contact_friction(k, a, b, wa, wb);
+          if (k.mu > 0.0) apply_contact_friction(k, va, vb, wa, wb);
           continue;
         }
         const double wanted = std::max(total + (k.target - closing) / (wa + wb), 0.0);
         const double impulse = wanted - total;
         if (impulse != 0.0) {
           total = wanted;
-          a.velocity -= n * (impulse * wa);
-          if (!k.fixed) b.velocity += n * (impulse * wb);
+          va -= n * (impulse * wa);
+          if (!k.fixed) vb += n * (impulse * wb);
           changed = changed || std::fabs(impulse) > 1.0e-12;
         }
-        if (k.mu > 0.0) changed = apply_contact_friction(k, a, b, wa, wb) || changed;
+        if (k.mu > 0.0) changed = apply_contact_friction(k, va, vb, wa, wb) || changed;
       }
       if (!changed && iteration > 0) break;
     }
+    for (std::uint32_t p = 0; p < active; ++p) body(w_.active_[p]).velocity = velocity[p];
     if (s_.warm_starting) remember_impulses();
+  }
+
+  // One marked candidate as a contact record (targets from the velocities before
+  // any impulse or cancellation of this phase).
+  void gather_contact(std::uint32_t c) {
+    const Candidate& cand = w_.candidates_[c];
+    const Body& a = body(cand.lower);
+    const Body& b = body(cand.upper);
+    ContactRecord k;
+    k.lower = cand.lower;
+    k.upper = cand.upper;
+    k.lower_pos = cand.lower_pos;
+    k.upper_pos = cand.upper_pos;
+    k.normal = w_.contact_normal_[c];
+    k.up = dot(k.normal, up_);
+    k.inv_mass_lower = a.inv_mass;
+    k.inv_mass_upper = cand.fixed ? 0.0 : b.inv_mass;
+    const double closing = dot(b.velocity - a.velocity, k.normal);
+    const double e = mix_restitution(a.restitution, b.restitution);
+    k.target = closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
+    k.mu = mix_contact_friction(a.contact_friction, b.contact_friction);
+    k.warm = s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
+    k.impulse = 0.0;
+    k.tangent_impulse = 0.0;
+    k.upper_generation = b.generation;
+    k.fixed = cand.fixed;
+    if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, k, closing);
+    w_.contacts_.push_back(k);
   }
 
   // Coulomb friction: the tangential impulse accumulated on a contact stays within
   // mu times its normal impulse (a contact that pushes nothing holds nothing).
-  bool apply_contact_friction(ContactRecord& k, Body& a, Body& b, double wa, double wb) {
+  bool apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa, double wb) {
     const Vec2 n = k.normal;
     const Vec2 t{-n.y, n.x};
-    const Vec2 vb = k.fixed ? Vec2{} : b.velocity;
-    const double sliding = dot(vb - a.velocity, t);
+    const double sliding = dot((k.fixed ? Vec2{} : vb) - va, t);
     const double limit = k.mu * k.impulse;
     double& total = k.tangent_impulse;
     const double wanted = std::clamp(total - sliding / (wa + wb), -limit, limit);
     const double impulse = wanted - total;
     if (impulse == 0.0) return false;
     total = wanted;
-    a.velocity -= t * (impulse * wa);
-    if (!k.fixed) b.velocity += t * (impulse * wb);
+    va -= t * (impulse * wa);
+    if (!k.fixed) vb += t * (impulse * wb);
     return std::fabs(impulse) > 1.0e-12;
   }
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
   void remember_impulses() {
-    for (std::uint32_t slot : w_.active_) w_.warm[slot].count = 0;
-    for (const ContactRecord& k : w_.contacts_) {
-      if (k.impulse <= 0.0) continue;
-      WarmImpulses& kept = w_.warm[k.lower];
-      if (kept.count < WarmImpulses::kSlots) {
-        kept.entries[kept.count++] = {k.upper, body(k.upper).generation, k.impulse};
+    // Contacts come grouped by the lower body's position: one walk clears and
+    // refills each body's entries.
+    const auto& contacts = w_.contacts_;
+    std::size_t i = 0;
+    for (std::uint32_t p = 0; p < w_.active_.size(); ++p) {
+      WarmImpulses& kept = w_.warm[w_.active_[p]];
+      kept.count = 0;
+      for (; i < contacts.size() && contacts[i].lower_pos == p; ++i) {
+        const ContactRecord& k = contacts[i];
+        if (!(k.impulse <= 0.0) && kept.count < WarmImpulses::kSlots) {
+          kept.entries[kept.count++] = {k.upper, k.upper_generation, k.impulse};
+        }
       }
     }
   }
@@ -594,17 +620,13 @@ class StepRunner {
   // body jammed against others (a row pressed to a wall) keeps the velocity the
   // contact iterations could not remove: it is put back in place every step while
   // its velocity grows, and the pile never comes to rest.
-  void cancel_velocity_into_corrections() {
-    const double per_second = 1.0 / h_;
-    for (std::uint32_t slot : w_.active_) {
-      Body& b = body(slot);
-      // Per axis, so that a push up from a floor cannot turn into sideways motion.
-      for (int axis = 0; axis < 2; ++axis) {
-        const double pushed = component(b.correction, axis);
-        double& v = component(b.velocity, axis);
-        if (pushed > 0.0 && v < 0.0) v = std::min(0.0, v + pushed * per_second);
-        if (pushed < 0.0 && v > 0.0) v = std::max(0.0, v + pushed * per_second);
-      }
+  void cancel_velocity_into_correction(Body& b, double per_second) {
+    // Per axis, so that a push up from a floor cannot turn into sideways motion.
+    for (int axis = 0; axis < 2; ++axis) {
+      const double pushed = component(b.correction, axis);
+      double& v = component(b.velocity, axis);
+      if (pushed > 0.0 && v < 0.0) v = std::min(0.0, v + pushed * per_second);
+      if (pushed < 0.0 && v > 0.0) v = std::max(0.0, v + pushed * per_second);
     }
   }
 

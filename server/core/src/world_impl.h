@@ -44,12 +44,14 @@ struct Body {
   bool alive = false;
   bool awake = true;
   std::uint32_t generation = 0;
+  // Warm: the materials, read once per contact by the restitution phase (next to
+  // the hot fields, so that a contact does not touch a body's cold line).
+  double restitution = 0.0;
+  double contact_friction = 0.0;
   // Cold: read once a step or less.
   Vec2 acceleration{};
   double mass = 0.0;
-  double restitution = 0.0;
   Vec2 friction{};
-  double contact_friction = 0.0;
   double still_time = 0.0;  // seconds it has stayed near still_anchor
   Vec2 still_anchor{};
 
@@ -84,7 +86,8 @@ struct ContactRecord {
   double mu;               // contact friction, mixed
   double impulse;          // accumulated normal impulse
   double tangent_impulse;  // accumulated friction impulse
-  bool fixed;              // upper is a static or sleeping body
+  std::uint32_t upper_generation;
+  bool fixed;  // upper is a static or sleeping body
 };
 
 class WorldImpl {
@@ -141,7 +144,8 @@ class WorldImpl {
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
   std::vector<std::uint8_t> supported_;              // per position in the processing order
   std::vector<Vec2> step_velocity_;                  // velocity at the end of the free motion
-  std::vector<Vec2> step_displacement_;              // free-motion displacement this sub-step
+  std::vector<Vec2> solver_velocity_;    // the restitution phase's velocities, by position
+  std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
