@@ -571,7 +571,7 @@ class StepRunner {
     const double e = mix_restitution(a.restitution, b.restitution);
     k.target = closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
     k.mu = mix_contact_friction(a.contact_friction, b.contact_friction);
-    k.warm = s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
+    k.warm = s_.warm_starting ? w_.warm_impulse(cand.lower, cand.upper, b.generation) : 0.0;
     k.impulse = 0.0;
     k.tangent_impulse = 0.0;
     k.upper_generation = b.generation;
@@ -599,19 +599,25 @@ class StepRunner {
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
   void remember_impulses() {
-    // Contacts come grouped by the lower body's position: one walk clears and
-    // refills each body's entries.
+    // Contacts come grouped by the lower body's position: one walk rewrites the
+    // pool in processing order.
     const auto& contacts = w_.contacts_;
+    auto& pool = w_.warm_pool;
+    pool.clear();
     std::size_t i = 0;
     for (std::uint32_t p = 0; p < w_.active_.size(); ++p) {
-      WarmImpulses& kept = w_.warm[w_.active_[p]];
-      kept.count = 0;
+      const std::uint32_t slot = w_.active_[p];
+      const auto first = static_cast<std::uint32_t>(pool.size());
+      std::uint8_t count = 0;
       for (; i < contacts.size() && contacts[i].lower_pos == p; ++i) {
         const ContactRecord& k = contacts[i];
-        if (!(k.impulse <= 0.0) && kept.count < WarmImpulses::kSlots) {
-          kept.entries[kept.count++] = {k.upper, k.upper_generation, k.impulse};
+        if (!(k.impulse <= 0.0) && count < kWarmSlots) {
+          pool.push_back({k.upper, k.upper_generation, k.impulse});
+          ++count;
         }
       }
+      w_.warm_first[slot] = first;
+      w_.warm_count[slot] = count;
     }
   }
 

@@ -12,23 +12,19 @@ namespace phys {
 
 // Last sub-step's contact impulses of a body toward the bodies above it in the
 // processing order (warm start), kept apart from Body so the hot loops stay small.
+// At most kWarmSlots per body. The awake bodies' entries sit in one pool, written
+// in processing order by the restitution phase and read back in that order by the
+// next one; a body that leaves the awake list keeps its entries in its own slot
+// (WarmImpulses) until it is awake again.
+struct WarmEntry {
+  std::uint32_t partner;
+  std::uint32_t generation;
+  double impulse;
+};
+constexpr std::uint8_t kWarmSlots = 8;
+constexpr std::uint32_t kWarmInSlot = UINT32_MAX;  // warm_first: entries in WarmImpulses
 struct WarmImpulses {
-  struct Entry {
-    std::uint32_t partner;
-    std::uint32_t generation;
-    double impulse;
-  };
-  static constexpr std::uint8_t kSlots = 8;
-  Entry entries[kSlots]{};
-  std::uint8_t count = 0;
-  double find(std::uint32_t partner, std::uint32_t partner_generation) const {
-    for (std::uint8_t i = 0; i < count; ++i) {
-      if (entries[i].partner == partner && entries[i].generation == partner_generation) {
-        return entries[i].impulse;
-      }
-    }
-    return 0.0;
-  }
+  WarmEntry entries[kWarmSlots]{};
 };
 
 struct Body {
@@ -108,7 +104,23 @@ class WorldImpl {
   StepProfile profile;
   std::uint64_t steps = 0;
   std::vector<Body> bodies;
-  std::vector<WarmImpulses> warm;  // per slot
+  // Warm-start impulses, per slot: how many, and where (warm_pool from warm_first,
+  // or warm[slot] when warm_first is kWarmInSlot).
+  std::vector<std::uint8_t> warm_count;
+  std::vector<std::uint32_t> warm_first;
+  std::vector<WarmImpulses> warm;
+  std::vector<WarmEntry> warm_pool;
+  double warm_impulse(std::uint32_t slot, std::uint32_t partner,
+                      std::uint32_t partner_generation) const {
+    const WarmEntry* entries =
+        warm_first[slot] == kWarmInSlot ? warm[slot].entries : warm_pool.data() + warm_first[slot];
+    for (std::uint8_t i = 0; i < warm_count[slot]; ++i) {
+      if (entries[i].partner == partner && entries[i].generation == partner_generation) {
+        return entries[i].impulse;
+      }
+    }
+    return 0.0;
+  }
 
  private:
   friend class StepRunner;
