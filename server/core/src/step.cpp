@@ -244,7 +244,11 @@ class StepRunner {
       const double v_end = component(w_.step_velocity_[p], axis);
       const double x0 = component(b.position, axis);
       const double x_end = x0 + component(w_.step_displacement_[p], axis);
-      if (!s_.continuous) {
+      // With no static or sleeping body among its candidates (they come first) the
+      // sweep has nothing to hit and the free motion stands: skip building its path.
+      const std::uint32_t first = w_.first_candidate_[p];
+      const bool near_fixed = first < w_.first_candidate_[p + 1] && w_.candidates_[first].fixed;
+      if (!s_.continuous || !near_fixed) {
         component(b.position, axis) = x_end;
         component(b.velocity, axis) = v_end;
         continue;
