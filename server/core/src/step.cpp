@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "physics/formulas.h"
 #include "sweep.h"
@@ -78,7 +79,6 @@ class StepRunner {
       PhaseTimer t(s_.profile, w_.profile.broadphase);
       find_candidates();
     }
-    w_.contacts_.clear();
     w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
     w_.contact_normal_.resize(w_.candidates_.size());
     move(1);
@@ -490,8 +490,10 @@ class StepRunner {
   // The velocity component along each contact's normal is reflected and scaled by
   // the restitution (zeroed below the rest speed), impulses split by inverse mass.
   void restitution() {
-    auto& contacts = w_.contacts_;
-    contacts.clear();
+    // Records are written in place: the array only grows (no clearing, no growth
+    // check per contact), contact_count_ says how many are this sub-step's.
+    if (w_.contacts_.size() < w_.candidates_.size()) w_.contacts_.resize(w_.candidates_.size());
+    contact_count_ = 0;
     // Gather the marked candidates in candidate order, with what the iterations read.
     // Candidates come grouped by their lower body's position p, and a body is never
     // read again once its group is done (later groups hold only higher bodies), so
@@ -511,8 +513,9 @@ class StepRunner {
       cancel_velocity_into_correction(b, per_second);
       velocity[p] = b.velocity;
     }
-    if (contacts.empty()) return;
+    if (contact_count_ == 0) return;
     ++w_.counters.restitution_passes;
+    const std::span<ContactRecord> contacts(w_.contacts_.data(), contact_count_);
     Vec2 unused{};  // what vb names for a fixed body; never read
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
@@ -567,7 +570,7 @@ class StepRunner {
     const Candidate& cand = w_.candidates_[c];
     const Body& a = body(cand.lower);
     const Body& b = body(cand.upper);
-    ContactRecord k;
+    ContactRecord& k = w_.contacts_[contact_count_++];
     k.lower = cand.lower;
     k.upper = cand.upper;
     k.lower_pos = cand.lower_pos;
@@ -586,7 +589,6 @@ class StepRunner {
     k.upper_generation = b.generation;
     k.fixed = cand.fixed;
     if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, k, closing);
-    w_.contacts_.push_back(k);
   }
 
   // Coulomb friction: the tangential impulse accumulated on a contact stays within
@@ -610,7 +612,7 @@ class StepRunner {
   void remember_impulses() {
     // Contacts come grouped by the lower body's position: one walk rewrites the
     // pool in processing order.
-    const auto& contacts = w_.contacts_;
+    const std::span<const ContactRecord> contacts(w_.contacts_.data(), contact_count_);
     auto& pool = w_.warm_pool;
     pool.clear();
     std::size_t i = 0;
@@ -745,7 +747,8 @@ class StepRunner {
   bool any_active_box_ = false;
   bool any_active_circle_ = false;
   bool order_changed_ = true;
-  double surely_slow_;  // squared speeds at or below this are under max_speed
+  std::uint32_t contact_count_ = 0;  // records in use at the front of contacts_
+  double surely_slow_;               // squared speeds at or below this are under max_speed
 };
 
 void WorldImpl::step(double dt) {

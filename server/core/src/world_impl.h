@@ -150,8 +150,8 @@ class WorldImpl {
   std::vector<BodyPair> active_pairs_;
   std::vector<std::uint32_t> overlaps_;
   std::vector<Candidate> candidates_;
-  std::vector<std::uint32_t> first_candidate_;  // per active position: CSR offsets
-  std::vector<ContactRecord> contacts_;
+  std::vector<std::uint32_t> first_candidate_;       // per active position: CSR offsets
+  std::vector<ContactRecord> contacts_;              // grow-only; the step counts those in use
   std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
   std::vector<std::uint8_t> supported_;              // per position in the processing order
