@@ -28,6 +28,9 @@ constexpr double kPushMargin = 0.1;
 // Pairs are found with boxes grown by this fraction more, and reused while every
 // body stays inside its grown box.
 constexpr double kFatMargin = 0.1;
+// Up to this many static and sleeping bodies are tested one by one, not through
+// their grid.
+constexpr std::size_t kFewFixed = 8;
 
 double component(const Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
 double& component(Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
@@ -183,28 +186,29 @@ class StepRunner {
   // move in it, so the pairs hold for both axis moves.
   void find_candidates() {
     const std::size_t n = w_.active_.size();
-    auto& needed = w_.active_boxes_;
-    needed.resize(n);
-    bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
-    for (std::size_t p = 0; p < n; ++p) {
+    // What body p may reach this sub-step: beyond its own motion, a body can be
+    // pushed by its neighbours while contacts are resolved, and a tenth of its size
+    // keeps those pushes within the pairs found.
+    const auto needed = [&](std::size_t p) {
       const Body& b = body(w_.active_[p]);
       const Vec2 d = w_.step_displacement_[p];
-      // Beyond its own motion, a body can be pushed by its neighbours while contacts
-      // are resolved: a tenth of its size keeps those pushes within the pairs found.
       const double pushed = kPushMargin * std::min(b.half.x, b.half.y) + s_.slop;
       const Vec2 margin{std::fabs(d.x) + pushed, std::fabs(d.y) + pushed};
       Aabb box = b.bounds();
       box.min -= margin;
       box.max += margin;
-      needed[p] = box;
-      if (all_inside) {
-        const Aabb& fat = w_.fat_boxes_[p];
-        all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
-                     box.max.y <= fat.max.y;
-      }
-    }
+      return box;
+    };
     // Every body still inside the box its pairs were found with, in the same order:
-    // those pairs are still a superset of the ones that can touch (Box2D's fat boxes).
+    // those pairs are still a superset of the ones that can touch (Box2D's fat
+    // boxes). The first body outside ends the check.
+    bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
+    for (std::size_t p = 0; all_inside && p < n; ++p) {
+      const Aabb box = needed(p);
+      const Aabb& fat = w_.fat_boxes_[p];
+      all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
+                   box.max.y <= fat.max.y;
+    }
     if (all_inside) {
       ++w_.counters.broadphase_reuses;
       return;
@@ -214,17 +218,27 @@ class StepRunner {
     for (std::size_t p = 0; p < n; ++p) {
       const Body& b = body(w_.active_[p]);
       const double extra = kFatMargin * std::min(b.half.x, b.half.y);
-      fat[p] = {needed[p].min - Vec2{extra, extra}, needed[p].max + Vec2{extra, extra}};
+      const Aabb box = needed(p);
+      fat[p] = {box.min - Vec2{extra, extra}, box.max + Vec2{extra, extra}};
     }
     w_.active_grid_.build(fat);
     w_.active_grid_.find_pairs(w_.active_pairs_);
 
     w_.candidates_.clear();
     w_.first_candidate_.assign(n + 1, 0);
+    const bool few_fixed = w_.fixed_boxes_.size() <= kFewFixed;
     std::size_t next_pair = 0;
     for (std::uint32_t p = 0; p < n; ++p) {
       w_.first_candidate_[p] = static_cast<std::uint32_t>(w_.candidates_.size());
-      if (w_.fixed_grid_.size() > 0) {
+      if (few_fixed) {
+        // A handful of static bodies (a container's walls): testing each is cheaper
+        // than a grid query, and gives the same ones in the same (ascending) order.
+        for (std::uint32_t f = 0; f < w_.fixed_boxes_.size(); ++f) {
+          if (boxes_intersect(fat[p], w_.fixed_boxes_[f])) {
+            w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], p, kNone, true});
+          }
+        }
+      } else if (w_.fixed_grid_.size() > 0) {
         w_.fixed_grid_.find_overlaps(fat[p], w_.overlaps_);
         for (std::uint32_t f : w_.overlaps_) {
           w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], p, kNone, true});

@@ -144,8 +144,7 @@ class WorldImpl {
   std::size_t fixed_sleeping_ = 0;  // sleeping bodies among them
 
   // Per-step scratch, kept to avoid allocating every step.
-  std::vector<Aabb> active_boxes_;  // what each awake body may reach this sub-step
-  std::vector<Aabb> fat_boxes_;     // the boxes the current candidates were found with
+  std::vector<Aabb> fat_boxes_;  // the boxes the current candidates were found with
   bool candidates_valid_ = false;
   std::vector<BodyPair> active_pairs_;
   std::vector<std::uint32_t> overlaps_;
