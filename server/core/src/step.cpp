@@ -523,9 +523,12 @@ class StepRunner {
       for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
         if (w_.contact_of_candidate_[c] != kNone) gather_contact(c);
       }
+      // Cancelled in a register and stored whole: reading back a velocity just
+      // stored one half at a time stalls the load.
       Body& b = body(w_.active_[p]);
-      cancel_velocity_into_correction(b, per_second);
-      velocity[p] = b.velocity;
+      const Vec2 v = cancelled_velocity(b.velocity, b.correction, per_second);
+      b.velocity = v;
+      velocity[p] = v;
     }
     if (contact_count_ == 0) return;
     ++w_.counters.restitution_passes;
@@ -651,14 +654,15 @@ class StepRunner {
   // body jammed against others (a row pressed to a wall) keeps the velocity the
   // contact iterations could not remove: it is put back in place every step while
   // its velocity grows, and the pile never comes to rest.
-  void cancel_velocity_into_correction(Body& b, double per_second) {
+  static Vec2 cancelled_velocity(Vec2 v, Vec2 correction, double per_second) {
     // Per axis, so that a push up from a floor cannot turn into sideways motion.
     for (int axis = 0; axis < 2; ++axis) {
-      const double pushed = component(b.correction, axis);
-      double& v = component(b.velocity, axis);
-      if (pushed > 0.0 && v < 0.0) v = std::min(0.0, v + pushed * per_second);
-      if (pushed < 0.0 && v > 0.0) v = std::max(0.0, v + pushed * per_second);
+      const double pushed = component(correction, axis);
+      double& u = component(v, axis);
+      if (pushed > 0.0 && u < 0.0) u = std::min(0.0, u + pushed * per_second);
+      if (pushed < 0.0 && u > 0.0) u = std::max(0.0, u + pushed * per_second);
     }
+    return v;
   }
 
   // A sleeping body wakes when it is hit: harder than a resting contact presses
