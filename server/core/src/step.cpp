@@ -363,24 +363,28 @@ class StepRunner {
     auto& near_list = w_.near_candidates_;
     const auto candidates = static_cast<std::uint32_t>(w_.candidates_.size());
     near_list.resize(candidates);  // filled by index: no growth check per pair
+    // The arrays by plain pointers: a push marks support through a byte store,
+    // which may alias anything, and would make each pair reload them.
+    std::uint32_t* const listed = near_list.data();
+    const Candidate* const cands = w_.candidates_.data();
+    Body* const bodies = w_.bodies.data();
     std::uint32_t near_count = 0;
     for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
       bool moved = false;
       if (iteration == 0) {
         for (std::uint32_t c = 0; c < candidates; ++c) {
-          const Candidate& cand = w_.candidates_[c];
-          Body& a = body(cand.lower);
-          Body& b = body(cand.upper);
+          const Candidate& cand = cands[c];
+          Body& a = bodies[cand.lower];
+          Body& b = bodies[cand.upper];
           if (!near(a, b)) continue;
-          near_list[near_count++] = c;
-          moved = resolve(c, a, b) || moved;
+          listed[near_count++] = c;
+          moved = resolve(cand, a, b) || moved;
         }
       } else {
         for (std::uint32_t k = 0; k < near_count; ++k) {
-          const std::uint32_t c = near_list[k];
-          const Candidate& cand = w_.candidates_[c];
-          moved = resolve(c, body(cand.lower), body(cand.upper)) || moved;
+          const Candidate& cand = cands[listed[k]];
+          moved = resolve(cand, bodies[cand.lower], bodies[cand.upper]) || moved;
         }
       }
       if (!moved) break;
@@ -394,7 +398,7 @@ class StepRunner {
     const int other = 1 - axis;
     const Vec2 unit = axis == 0 ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
     std::uint64_t tests = 0;  // counted here, added once: the loop keeps it in a register
-    resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
+    resolve_passes([&](const Candidate& cand, Body& a, Body& b) {
       if (a.shape != Shape::Box || b.shape != Shape::Box) return false;
       ++tests;
       const Aabb ba = a.bounds();
@@ -413,7 +417,7 @@ class StepRunner {
       // width (catching on seams), or lifted by a neighbour's height.
       if (depth > across) return false;
       const Vec2 n = (cb >= ca) ? unit : -unit;  // from a toward b
-      return separate(c, a, b, n, depth);
+      return separate(cand, a, b, n, depth);
     });
     w_.counters.box_box_tests += tests;
   }
@@ -426,7 +430,7 @@ class StepRunner {
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
     std::uint64_t circle_tests = 0;
     std::uint64_t mixed_tests = 0;
-    resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
+    resolve_passes([&](const Candidate& cand, Body& a, Body& b) {
       Contact contact;
       if (a.shape == Shape::Circle && b.shape == Shape::Circle) {
         ++circle_tests;
@@ -442,7 +446,7 @@ class StepRunner {
         return false;
       }
       if (!contact.colliding) return false;
-      return separate(c, a, b, contact.normal, contact.penetration);
+      return separate(cand, a, b, contact.normal, contact.penetration);
     });
     w_.counters.circle_circle_tests += circle_tests;
     w_.counters.circle_box_tests += mixed_tests;
@@ -471,9 +475,9 @@ class StepRunner {
   // Pushes a and b apart along n (from a toward b) by depth plus slop, split by
   // inverse mass, and records the contact for restitution. With shock propagation a
   // supported body is immovable for the bodies it carries.
-  bool separate(std::uint32_t c, Body& a, Body& b, Vec2 n, double depth) {
+  bool separate(const Candidate& cand, Body& a, Body& b, Vec2 n, double depth) {
     const double up = dot(n, up_);
-    const Candidate& cand = w_.candidates_[c];
+    const auto c = static_cast<std::uint32_t>(&cand - w_.candidates_.data());
     double wa = a.inv_mass;
     double wb = cand.fixed ? 0.0 : b.inv_mass;
     carry(cand.fixed, cand.lower_pos, cand.upper_pos, up, wa, wb);
