@@ -149,6 +149,11 @@ class StepRunner {
     w_.step_velocity_.resize(n);
     w_.step_displacement_.resize(n);
     bool any_friction = false;
+    // The broadphase's reuse check rides along (it reads the same body and the
+    // displacement just computed): every body still inside the box its pairs were
+    // found with, in the same order, and those pairs are still a superset of the
+    // ones that can touch (Box2D's fat boxes). The first body outside ends it.
+    bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
     any_active_box_ = false;
     any_active_circle_ = false;
     for (std::size_t p = 0; p < n; ++p) {
@@ -176,40 +181,36 @@ class StepRunner {
       }
       w_.step_velocity_[p] = v;
       w_.step_displacement_[p] = d;
+      if (all_inside) {
+        const Aabb box = needed_box(b, d);
+        const Aabb& fat = w_.fat_boxes_[p];
+        all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
+                     box.max.y <= fat.max.y;
+      }
     }
+    all_inside_ = all_inside;
     w_.counters.bodies_integrated += n;
     if (any_friction) ++w_.counters.friction_passes;
     if (gravity_on_) ++w_.counters.gravity_passes;
+  }
+
+  // What a body may reach this sub-step, given its free-motion displacement d:
+  // beyond its own motion, a body can be pushed by its neighbours while contacts
+  // are resolved, and a tenth of its size keeps those pushes within the pairs found.
+  Aabb needed_box(const Body& b, Vec2 d) const {
+    const double pushed = kPushMargin * std::min(b.half.x, b.half.y) + s_.slop;
+    const Vec2 margin{std::fabs(d.x) + pushed, std::fabs(d.y) + pushed};
+    Aabb box = b.bounds();
+    box.min -= margin;
+    box.max += margin;
+    return box;
   }
 
   // Candidate pairs for the whole sub-step: boxes fattened by how far each body can
   // move in it, so the pairs hold for both axis moves.
   void find_candidates() {
     const std::size_t n = w_.active_.size();
-    // What body p may reach this sub-step: beyond its own motion, a body can be
-    // pushed by its neighbours while contacts are resolved, and a tenth of its size
-    // keeps those pushes within the pairs found.
-    const auto needed = [&](std::size_t p) {
-      const Body& b = body(w_.active_[p]);
-      const Vec2 d = w_.step_displacement_[p];
-      const double pushed = kPushMargin * std::min(b.half.x, b.half.y) + s_.slop;
-      const Vec2 margin{std::fabs(d.x) + pushed, std::fabs(d.y) + pushed};
-      Aabb box = b.bounds();
-      box.min -= margin;
-      box.max += margin;
-      return box;
-    };
-    // Every body still inside the box its pairs were found with, in the same order:
-    // those pairs are still a superset of the ones that can touch (Box2D's fat
-    // boxes). The first body outside ends the check.
-    bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
-    for (std::size_t p = 0; all_inside && p < n; ++p) {
-      const Aabb box = needed(p);
-      const Aabb& fat = w_.fat_boxes_[p];
-      all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
-                   box.max.y <= fat.max.y;
-    }
-    if (all_inside) {
+    if (all_inside_) {  // integrate() found the last pairs still good (fat boxes)
       ++w_.counters.broadphase_reuses;
       return;
     }
@@ -218,7 +219,7 @@ class StepRunner {
     for (std::size_t p = 0; p < n; ++p) {
       const Body& b = body(w_.active_[p]);
       const double extra = kFatMargin * std::min(b.half.x, b.half.y);
-      const Aabb box = needed(p);
+      const Aabb box = needed_box(b, w_.step_displacement_[p]);
       fat[p] = {box.min - Vec2{extra, extra}, box.max + Vec2{extra, extra}};
     }
     w_.active_grid_.build(fat);
@@ -769,6 +770,7 @@ class StepRunner {
   bool any_active_box_ = false;
   bool any_active_circle_ = false;
   bool order_changed_ = true;
+  bool all_inside_ = false;          // integrate() found every body inside its fat box
   std::uint32_t contact_count_ = 0;  // records in use at the front of contacts_
   double surely_slow_;               // squared speeds at or below this are under max_speed
 };
