@@ -28,6 +28,8 @@ constexpr double kPushMargin = 0.1;
 // Pairs are found with boxes grown by this fraction more, and reused while every
 // body stays inside its grown box.
 constexpr double kFatMargin = 0.1;
+// How many candidate pairs ahead the position passes prefetch scattered bodies.
+constexpr std::uint32_t kPrefetchAhead = 8;
 // Up to this many static and sleeping bodies are tested one by one, not through
 // their grid.
 constexpr std::size_t kFewFixed = 8;
@@ -109,6 +111,14 @@ class StepRunner {
     auto& keys = w_.sort_keys_;
     keys.resize(order.size());
     for (std::size_t p = 0; p < order.size(); ++p) keys[p] = dot(body(order[p]).position, up_);
+    std::size_t jumps = 0;  // neighbours in the order that are not neighbours in slots
+    for (std::size_t p = 1; p < order.size(); ++p) {
+      jumps += static_cast<std::size_t>(order[p] != order[p - 1] + 1);
+    }
+    // Far from slot order (a pile that has flowed), the position passes read bodies
+    // all over memory and prefetch them; in slot order (a stack, a fresh scene) the
+    // hardware streams them on its own.
+    scattered_ = 4 * jumps > order.size();
     // Heights within the slop are ties, broken by slot: a row of boxes at one height
     // keeps its order although rounding moves them by 1e-16 (and the candidate pairs,
     // grouped by position in this order, can then be reused).
@@ -359,8 +369,19 @@ class StepRunner {
 
   // Gauss-Seidel passes over the candidate pairs: the first pass visits all of them
   // and keeps the pairs near enough to matter; later passes visit only those.
+  // The passes come in two builds: with prefetching for bodies scattered in
+  // memory, and without it, so that a stack's loop carries no trace of it.
   template <typename Resolve>
   void resolve_passes(Resolve&& resolve) {
+    if (scattered_) {
+      resolve_passes<true>(resolve);
+    } else {
+      resolve_passes<false>(resolve);
+    }
+  }
+
+  template <bool kPrefetch, typename Resolve>
+  void resolve_passes(Resolve& resolve) {
     auto& near_list = w_.near_candidates_;
     const auto candidates = static_cast<std::uint32_t>(w_.candidates_.size());
     near_list.resize(candidates);  // filled by index: no growth check per pair
@@ -376,6 +397,9 @@ class StepRunner {
       if (iteration == 0) {
         for (std::uint32_t c = 0; c < candidates; ++c) {
           const Candidate& cand = cands[c];
+          if (kPrefetch && c + kPrefetchAhead < candidates) {
+            prefetch_pair(bodies, cands[c + kPrefetchAhead]);
+          }
           Body& a = bodies[cand.lower];
           Body& b = bodies[cand.upper];
           if (!near(a, b)) continue;
@@ -385,11 +409,19 @@ class StepRunner {
       } else {
         for (std::uint32_t k = 0; k < near_count; ++k) {
           const Candidate& cand = cands[listed[k]];
+          if (kPrefetch && k + kPrefetchAhead < near_count) {
+            prefetch_pair(bodies, cands[listed[k + kPrefetchAhead]]);
+          }
           moved = resolve(cand, bodies[cand.lower], bodies[cand.upper]) || moved;
         }
       }
       if (!moved) break;
     }
+  }
+
+  static void prefetch_pair(const Body* bodies, const Candidate& cand) {
+    __builtin_prefetch(&bodies[cand.lower]);
+    __builtin_prefetch(&bodies[cand.upper]);
   }
 
   // Per-axis resolution of box pairs: the lecture's penetration on the axis, pushed
@@ -770,6 +802,7 @@ class StepRunner {
   bool any_active_box_ = false;
   bool any_active_circle_ = false;
   bool order_changed_ = true;
+  bool scattered_ = false;           // the processing order is far from slot order
   bool all_inside_ = false;          // integrate() found every body inside its fat box
   std::uint32_t contact_count_ = 0;  // records in use at the front of contacts_
   double surely_slow_;               // squared speeds at or below this are under max_speed
