@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "physics/formulas.h"
 #include "sweep.h"
@@ -27,6 +28,11 @@ constexpr double kPushMargin = 0.1;
 // Pairs are found with boxes grown by this fraction more, and reused while every
 // body stays inside its grown box.
 constexpr double kFatMargin = 0.1;
+// How many candidate pairs ahead the position passes prefetch scattered bodies.
+constexpr std::uint32_t kPrefetchAhead = 8;
+// Up to this many static and sleeping bodies are tested one by one, not through
+// their grid.
+constexpr std::size_t kFewFixed = 8;
 
 double component(const Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
 double& component(Vec2& v, int axis) { return axis == 0 ? v.x : v.y; }
@@ -62,7 +68,9 @@ class StepRunner {
         up_(gravity_on_ ? -s_.gravity * (1.0 / length(s_.gravity)) : Vec2{0.0, 1.0}),
         rest_speed_(s_.rest_speed > 0.0 ? s_.rest_speed : 2.0 * length(s_.gravity) * h),
         shock_(s_.shock_propagation && gravity_on_),
-        hold_(s_.hold_resting_support && gravity_on_) {}
+        hold_(s_.hold_resting_support && gravity_on_),
+        // (Never, for a limit so large that its square would overflow.)
+        surely_slow_(s_.max_speed < 1.0e150 ? (0.5 * s_.max_speed) * (0.5 * s_.max_speed) : -1.0) {}
 
   void run() {
     if (w_.lists_dirty_) w_.rebuild_lists();
@@ -77,10 +85,8 @@ class StepRunner {
       PhaseTimer t(s_.profile, w_.profile.broadphase);
       find_candidates();
     }
-    w_.contacts_.clear();
     w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
     w_.contact_normal_.resize(w_.candidates_.size());
-    w_.contact_support_.resize(w_.candidates_.size());
     w_.contact_gap_.resize(w_.candidates_.size());
     move(1);
     if (any_active_box_) collide_boxes_on(1);
@@ -109,6 +115,14 @@ class StepRunner {
     auto& keys = w_.sort_keys_;
     keys.resize(order.size());
     for (std::size_t p = 0; p < order.size(); ++p) keys[p] = dot(body(order[p]).position, up_);
+    std::size_t jumps = 0;  // neighbours in the order that are not neighbours in slots
+    for (std::size_t p = 1; p < order.size(); ++p) {
+      jumps += static_cast<std::size_t>(order[p] != order[p - 1] + 1);
+    }
+    // Far from slot order (a pile that has flowed), the position passes read bodies
+    // all over memory and prefetch them; in slot order (a stack, a fresh scene) the
+    // hardware streams them on its own.
+    scattered_ = 4 * jumps > order.size();
     // Heights within the slop are ties, broken by slot: a row of boxes at one height
     // keeps its order although rounding moves them by 1e-16 (and the candidate pairs,
     // grouped by position in this order, can then be reused).
@@ -150,6 +164,11 @@ class StepRunner {
     w_.step_displacement_.resize(n);
     bool any_friction = false;
     any_contact_friction_ = false;
+    // The broadphase's reuse check rides along (it reads the same body and the
+    // displacement just computed): every body still inside the box its pairs were
+    // found with, in the same order, and those pairs are still a superset of the
+    // ones that can touch (Box2D's fat boxes). The first body outside ends it.
+    bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
     any_active_box_ = false;
     any_active_circle_ = false;
     for (std::size_t p = 0; p < n; ++p) {
@@ -178,7 +197,10 @@ class StepRunner {
                      .position -
                  b.position.y};
       }
-      const double speed = length(v);
+      // A squared speed below a quarter of the limit's square is surely under the
+      // limit (sqrt of it is about half the limit): no square root for the usual body.
+      const double speed_squared = dot(v, v);
+      const double speed = speed_squared <= surely_slow_ ? 0.0 : std::sqrt(speed_squared);
       if (speed > s_.max_speed) {  // the world stays finite: speeds are capped
         const double scale = s_.max_speed / speed;
         v = v * scale;
@@ -187,7 +209,14 @@ class StepRunner {
       }
       w_.step_velocity_[p] = v;
       w_.step_displacement_[p] = d;
+      if (all_inside) {
+        const Aabb box = needed_box(b, d);
+        const Aabb& fat = w_.fat_boxes_[p];
+        all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
+                     box.max.y <= fat.max.y;
+      }
     }
+    all_inside_ = all_inside;
     w_.counters.bodies_integrated += n;
     if (any_contact_friction_) {
       w_.step_start_.resize(n);
@@ -203,33 +232,23 @@ class StepRunner {
     return gravity_on_ ? b.acceleration + s_.gravity + up_ * b.held : b.acceleration;
   }
 
+  // What a body may reach this sub-step, given its free-motion displacement d:
+  // beyond its own motion, a body can be pushed by its neighbours while contacts
+  // are resolved, and a tenth of its size keeps those pushes within the pairs found.
+  Aabb needed_box(const Body& b, Vec2 d) const {
+    const double pushed = kPushMargin * std::min(b.half.x, b.half.y) + s_.slop;
+    const Vec2 margin{std::fabs(d.x) + pushed, std::fabs(d.y) + pushed};
+    Aabb box = b.bounds();
+    box.min -= margin;
+    box.max += margin;
+    return box;
+  }
+
   // Candidate pairs for the whole sub-step: boxes fattened by how far each body can
   // move in it, so the pairs hold for both axis moves.
   void find_candidates() {
     const std::size_t n = w_.active_.size();
-    auto& needed = w_.active_boxes_;
-    needed.resize(n);
-    bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
-    for (std::size_t p = 0; p < n; ++p) {
-      const Body& b = body(w_.active_[p]);
-      const Vec2 d = w_.step_displacement_[p];
-      // Beyond its own motion, a body can be pushed by its neighbours while contacts
-      // are resolved: a tenth of its size keeps those pushes within the pairs found.
-      const double pushed = kPushMargin * std::min(b.half.x, b.half.y) + s_.slop;
-      const Vec2 margin{std::fabs(d.x) + pushed, std::fabs(d.y) + pushed};
-      Aabb box = b.bounds();
-      box.min -= margin;
-      box.max += margin;
-      needed[p] = box;
-      if (all_inside) {
-        const Aabb& fat = w_.fat_boxes_[p];
-        all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
-                     box.max.y <= fat.max.y;
-      }
-    }
-    // Every body still inside the box its pairs were found with, in the same order:
-    // those pairs are still a superset of the ones that can touch (Box2D's fat boxes).
-    if (all_inside) {
+    if (all_inside_) {  // integrate() found the last pairs still good (fat boxes)
       ++w_.counters.broadphase_reuses;
       return;
     }
@@ -238,17 +257,27 @@ class StepRunner {
     for (std::size_t p = 0; p < n; ++p) {
       const Body& b = body(w_.active_[p]);
       const double extra = kFatMargin * std::min(b.half.x, b.half.y);
-      fat[p] = {needed[p].min - Vec2{extra, extra}, needed[p].max + Vec2{extra, extra}};
+      const Aabb box = needed_box(b, w_.step_displacement_[p]);
+      fat[p] = {box.min - Vec2{extra, extra}, box.max + Vec2{extra, extra}};
     }
     w_.active_grid_.build(fat);
     w_.active_grid_.find_pairs(w_.active_pairs_);
 
     w_.candidates_.clear();
     w_.first_candidate_.assign(n + 1, 0);
+    const bool few_fixed = w_.fixed_boxes_.size() <= kFewFixed;
     std::size_t next_pair = 0;
     for (std::uint32_t p = 0; p < n; ++p) {
       w_.first_candidate_[p] = static_cast<std::uint32_t>(w_.candidates_.size());
-      if (w_.fixed_grid_.size() > 0) {
+      if (few_fixed) {
+        // A handful of static bodies (a container's walls): testing each is cheaper
+        // than a grid query, and gives the same ones in the same (ascending) order.
+        for (std::uint32_t f = 0; f < w_.fixed_boxes_.size(); ++f) {
+          if (boxes_intersect(fat[p], w_.fixed_boxes_[f])) {
+            w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], p, kNone, true});
+          }
+        }
+      } else if (w_.fixed_grid_.size() > 0) {
         w_.fixed_grid_.find_overlaps(fat[p], w_.overlaps_);
         for (std::uint32_t f : w_.overlaps_) {
           w_.candidates_.push_back({w_.active_[p], w_.fixed_[f], p, kNone, true});
@@ -273,7 +302,11 @@ class StepRunner {
       const double v_end = component(w_.step_velocity_[p], axis);
       const double x0 = component(b.position, axis);
       const double x_end = x0 + component(w_.step_displacement_[p], axis);
-      if (!s_.continuous) {
+      // With no static or sleeping body among its candidates (they come first) the
+      // sweep has nothing to hit and the free motion stands: skip building its path.
+      const std::uint32_t first = w_.first_candidate_[p];
+      const bool near_fixed = first < w_.first_candidate_[p + 1] && w_.candidates_[first].fixed;
+      if (!s_.continuous || !near_fixed) {
         component(b.position, axis) = x_end;
         component(b.velocity, axis) = v_end;
         continue;
@@ -346,7 +379,7 @@ class StepRunner {
         // gathering speed instead of sliding off it.
         component(b.position, axis) = touching;
         const Vec2 n = touching_normal(b, body(hit_body), axis, inside < 0.0 ? -1.0 : 1.0);
-        record_contact(hit_candidate, n, dot(n, up_));
+        record_contact(hit_candidate, n);
         return;
       }
       const AxisMotion rest =
@@ -399,28 +432,59 @@ class StepRunner {
 
   // Gauss-Seidel passes over the candidate pairs: the first pass visits all of them
   // and keeps the pairs near enough to matter; later passes visit only those.
+  // The passes come in two builds: with prefetching for bodies scattered in
+  // memory, and without it, so that a stack's loop carries no trace of it.
   template <typename Resolve>
   void resolve_passes(Resolve&& resolve) {
+    if (scattered_) {
+      resolve_passes<true>(resolve);
+    } else {
+      resolve_passes<false>(resolve);
+    }
+  }
+
+  template <bool kPrefetch, typename Resolve>
+  void resolve_passes(Resolve& resolve) {
     auto& near_list = w_.near_candidates_;
-    near_list.clear();
+    const auto candidates = static_cast<std::uint32_t>(w_.candidates_.size());
+    near_list.resize(candidates);  // filled by index: no growth check per pair
+    // The arrays by plain pointers: a push marks support through a byte store,
+    // which may alias anything, and would make each pair reload them.
+    std::uint32_t* const listed = near_list.data();
+    const Candidate* const cands = w_.candidates_.data();
+    Body* const bodies = w_.bodies.data();
+    std::uint32_t near_count = 0;
     for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
       bool moved = false;
-      const bool first = iteration == 0;
-      const std::size_t count = first ? w_.candidates_.size() : near_list.size();
-      for (std::size_t k = 0; k < count; ++k) {
-        const auto c = first ? static_cast<std::uint32_t>(k) : near_list[k];
-        const Candidate& cand = w_.candidates_[c];
-        Body& a = body(cand.lower);
-        Body& b = body(cand.upper);
-        if (first) {
+      if (iteration == 0) {
+        for (std::uint32_t c = 0; c < candidates; ++c) {
+          const Candidate& cand = cands[c];
+          if (kPrefetch && c + kPrefetchAhead < candidates) {
+            prefetch_pair(bodies, cands[c + kPrefetchAhead]);
+          }
+          Body& a = bodies[cand.lower];
+          Body& b = bodies[cand.upper];
           if (!near(a, b)) continue;
-          near_list.push_back(c);
+          listed[near_count++] = c;
+          moved = resolve(cand, a, b) || moved;
         }
-        moved = resolve(c, a, b) || moved;
+      } else {
+        for (std::uint32_t k = 0; k < near_count; ++k) {
+          const Candidate& cand = cands[listed[k]];
+          if (kPrefetch && k + kPrefetchAhead < near_count) {
+            prefetch_pair(bodies, cands[listed[k + kPrefetchAhead]]);
+          }
+          moved = resolve(cand, bodies[cand.lower], bodies[cand.upper]) || moved;
+        }
       }
       if (!moved) break;
     }
+  }
+
+  static void prefetch_pair(const Body* bodies, const Candidate& cand) {
+    __builtin_prefetch(&bodies[cand.lower]);
+    __builtin_prefetch(&bodies[cand.upper]);
   }
 
   // Per-axis resolution of box pairs: the lecture's penetration on the axis, pushed
@@ -429,9 +493,10 @@ class StepRunner {
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
     const int other = 1 - axis;
     const Vec2 unit = axis == 0 ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
-    resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
+    std::uint64_t tests = 0;  // counted here, added once: the loop keeps it in a register
+    resolve_passes([&](const Candidate& cand, Body& a, Body& b) {
       if (a.shape != Shape::Box || b.shape != Shape::Box) return false;
-      ++w_.counters.box_box_tests;
+      ++tests;
       const Aabb ba = a.bounds();
       const Aabb bb = b.bounds();
       // Touching on the other axis only (side by side): that axis resolves it.
@@ -444,7 +509,7 @@ class StepRunner {
       const double gap = std::min(component(ba.max, axis), component(bb.max, axis)) -
                          std::max(component(ba.min, axis), component(bb.min, axis));
       if (gap < 0.0) {  // apart on this axis: a near miss, or nothing
-        if (-gap <= near_miss_margin()) record_near_miss(c, n, -gap);
+        if (-gap <= near_miss_margin()) record_near_miss(cand, n, -gap);
         return false;
       }
       const double depth =
@@ -453,8 +518,9 @@ class StepRunner {
       // sank a little into a floor tile would be thrown sideways by the tile's
       // width (catching on seams), or lifted by a neighbour's height.
       if (depth > across) return false;
-      return separate(c, a, b, n, depth);
+      return separate(cand, a, b, n, depth);
     });
+    w_.counters.box_box_tests += tests;
   }
 
   // The X phase: boxes on X, then every pair with a circle along its normal (a
@@ -463,19 +529,21 @@ class StepRunner {
     if (any_active_box_) collide_boxes_on(0);
     if (!any_active_circle_ && !(any_active_box_ && w_.fixed_circles_ > 0)) return;
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
+    std::uint64_t circle_tests = 0;
+    std::uint64_t mixed_tests = 0;
     // Shapes are tested grown by the near-miss margin: a pair a hair apart (as the
     // last push left it) is still a contact for the velocity pass.
     const double margin = near_miss_margin();
-    resolve_passes([&](std::uint32_t c, Body& a, Body& b) {
+    resolve_passes([&](const Candidate& cand, Body& a, Body& b) {
       Contact contact;
       if (a.shape == Shape::Circle && b.shape == Shape::Circle) {
-        ++w_.counters.circle_circle_tests;
+        ++circle_tests;
         contact = collide_circles(a.position, a.radius + margin, b.position, b.radius);
       } else if (a.shape == Shape::Circle) {
-        ++w_.counters.circle_box_tests;
+        ++mixed_tests;
         contact = collide_circle_box(a.position, a.radius + margin, b.bounds());
       } else if (b.shape == Shape::Circle) {
-        ++w_.counters.circle_box_tests;
+        ++mixed_tests;
         contact = collide_circle_box(b.position, b.radius + margin, a.bounds());
         contact.normal = -contact.normal;
       } else {
@@ -484,45 +552,48 @@ class StepRunner {
       if (!contact.colliding) return false;
       const double depth = contact.penetration - margin;
       if (depth < 0.0) {
-        record_near_miss(c, contact.normal, -depth);
+        record_near_miss(cand, contact.normal, -depth);
         return false;
       }
-      return separate(c, a, b, contact.normal, depth);
+      return separate(cand, a, b, contact.normal, depth);
     });
+    w_.counters.circle_circle_tests += circle_tests;
+    w_.counters.circle_box_tests += mixed_tests;
   }
 
   // Shock propagation, for both the position and the velocity passes: a body resting
   // on support (a fixed body below it, or a supported body) is immovable for the
   // bodies it carries, for contacts within 60 degrees of vertical. wa and wb are
   // the inverse-mass weights of the pair; the carrier's becomes zero.
-  void carry(const Candidate& cand, double up, double& wa, double& wb) {
+  void carry(bool fixed, std::uint32_t lower_pos, std::uint32_t upper_pos, double up, double& wa,
+             double& wb) {
     auto& supported = w_.supported_;
-    if (cand.fixed) {
-      if (up < -kSupportCosine) supported[cand.lower_pos] = 1;
+    if (fixed) {
+      if (up < -kSupportCosine) supported[lower_pos] = 1;
     } else if (!shock_) {
       return;
-    } else if (up > kSupportCosine && supported[cand.lower_pos]) {
+    } else if (up > kSupportCosine && supported[lower_pos]) {
       wa = 0.0;
-      supported[cand.upper_pos] = 1;
-    } else if (up < -kSupportCosine && supported[cand.upper_pos]) {
+      supported[upper_pos] = 1;
+    } else if (up < -kSupportCosine && supported[upper_pos]) {
       wb = 0.0;
-      supported[cand.lower_pos] = 1;
+      supported[lower_pos] = 1;
     }
   }
 
   // Pushes a and b apart along n (from a toward b) by depth plus slop, split by
   // inverse mass, and records the contact for restitution. With shock propagation a
   // supported body is immovable for the bodies it carries.
-  bool separate(std::uint32_t c, Body& a, Body& b, Vec2 n, double depth) {
+  bool separate(const Candidate& cand, Body& a, Body& b, Vec2 n, double depth) {
     const double up = dot(n, up_);
-    const Candidate& cand = w_.candidates_[c];
+    const auto c = static_cast<std::uint32_t>(&cand - w_.candidates_.data());
     double wa = a.inv_mass;
     double wb = cand.fixed ? 0.0 : b.inv_mass;
-    carry(cand, up, wa, wb);
+    carry(cand.fixed, cand.lower_pos, cand.upper_pos, up, wa, wb);
     const double sum = wa + wb;
     wa /= sum;
     wb /= sum;
-    record_contact(c, n, up);
+    record_contact(c, n);
     const double push = depth + s_.slop;
     if (depth == 0.0 && !(push > 0.0)) return false;
     a.position -= n * (push * wa);
@@ -569,16 +640,17 @@ class StepRunner {
   // by no velocity).
   double near_miss_margin() const { return 2.0 * s_.slop; }
 
-  void record_near_miss(std::uint32_t c, Vec2 n, double gap) {
+  void record_near_miss(const Candidate& cand, Vec2 n, double gap) {
     // A near miss carries weight like a touching contact: the support marks pass
     // through it, or a body resting a slop above its support would not count as
     // supported, and what it carries would push it down into the pile.
     const double up = dot(n, up_);
     double wa = 1.0;
     double wb = 1.0;
-    carry(w_.candidates_[c], up, wa, wb);
+    carry(cand.fixed, cand.lower_pos, cand.upper_pos, up, wa, wb);
+    const auto c = static_cast<std::uint32_t>(&cand - w_.candidates_.data());
     if (w_.contact_of_candidate_[c] != kNone && w_.contact_gap_[c] == 0.0) return;
-    record_contact(c, n, up);
+    record_contact(c, n);
     w_.contact_gap_[c] = gap;
   }
 
@@ -593,112 +665,139 @@ class StepRunner {
 
   // Marks candidate c as a contact with normal n; the restitution phase gathers
   // the marked candidates in candidate order (so no sort is needed).
-  void record_contact(std::uint32_t c, Vec2 n, double up) {
+  void record_contact(std::uint32_t c, Vec2 n) {
     w_.contact_of_candidate_[c] = 1;
     w_.contact_gap_[c] = 0.0;
     w_.contact_normal_[c] = n;
-    w_.contact_support_[c] = std::fabs(up) > kSupportCosine;
   }
 
   // The velocity component along each contact's normal is reflected and scaled by
   // the restitution (zeroed below the rest speed), impulses split by inverse mass.
   void restitution() {
-    auto& contacts = w_.contacts_;
-    contacts.clear();
-    for (std::uint32_t c = 0; c < w_.candidates_.size(); ++c) {
-      if (w_.contact_of_candidate_[c] == kNone) continue;
-      if (w_.contact_gap_[c] > 0.0 && !resting_near_miss(c)) continue;
-      contacts.push_back({c, w_.contact_normal_[c], w_.contact_support_[c] != 0});
-    }
-    if (contacts.empty()) return;
-    ++w_.counters.restitution_passes;
-    w_.contact_targets_.resize(contacts.size());
-    w_.contact_impulses_.assign(contacts.size(), 0.0);
-    w_.contact_warm_.resize(contacts.size());
-    w_.contact_tangent_impulses_.assign(contacts.size(), 0.0);
-    w_.contact_mu_.resize(contacts.size());
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const Candidate& cand = w_.candidates_[contacts[i].candidate];
-      const Body& a = body(cand.lower);
-      const Body& b = body(cand.upper);
-      const double closing = dot(b.velocity - a.velocity, contacts[i].normal);
-      const double e = mix_restitution(a.restitution, b.restitution);
-      w_.contact_targets_[i] =
-          closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
-      w_.contact_mu_[i] = mix_contact_friction(a.contact_friction, b.contact_friction);
-      w_.contact_warm_[i] =
-          s_.warm_starting ? w_.warm[cand.lower].find(cand.upper, b.generation) : 0.0;
-      if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, contacts[i], closing);
-      if (hold_) {
-        w_.in_contact_[cand.lower_pos] = 1;
-        if (!cand.fixed) w_.in_contact_[cand.upper_pos] = 1;
+    // Records are written in place: the array only grows (no clearing, no growth
+    // check per contact), contact_count_ says how many are this sub-step's.
+    if (w_.contacts_.size() < w_.candidates_.size()) w_.contacts_.resize(w_.candidates_.size());
+    contact_count_ = 0;
+    // Gather the marked candidates in candidate order, with what the iterations read.
+    // Candidates come grouped by their lower body's position p, and a body is never
+    // read again once its group is done (later groups hold only higher bodies), so
+    // its velocity is cancelled into its corrections right there, while it is in
+    // cache. With no contact at all every correction is zero and that changes nothing.
+    const double per_second = 1.0 / h_;
+    const auto active = static_cast<std::uint32_t>(w_.active_.size());
+    // The iterations read and write only awake bodies' velocities (a fixed body's
+    // counts as zero): they work on a dense copy by position, written back at the end.
+    auto& velocity = w_.solver_velocity_;
+    velocity.resize(active);
+    for (std::uint32_t p = 0; p < active; ++p) {
+      for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
+        if (w_.contact_of_candidate_[c] == kNone) continue;
+        if (w_.contact_gap_[c] > 0.0 && !resting_near_miss(c)) continue;
+        gather_contact(c);
       }
+      // Cancelled in a register and stored whole: reading back a velocity just
+      // stored one half at a time stalls the load.
+      Body& b = body(w_.active_[p]);
+      const Vec2 v = cancelled_velocity(b.velocity, b.correction, per_second);
+      b.velocity = v;
+      velocity[p] = v;
     }
-    cancel_velocity_into_corrections();
+    if (contact_count_ == 0) return;
+    ++w_.counters.restitution_passes;
+    const std::span<ContactRecord> contacts(w_.contacts_.data(), contact_count_);
+    Vec2 unused{};  // what vb names for a fixed body; never read
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
       bool changed = false;
-      for (std::size_t i = 0; i < contacts.size(); ++i) {
-        const Candidate& cand = w_.candidates_[contacts[i].candidate];
-        Body& a = body(cand.lower);
-        Body& b = body(cand.upper);
-        const Vec2 n = contacts[i].normal;
-        double wa = a.inv_mass;
-        double wb = cand.fixed ? 0.0 : b.inv_mass;
-        carry(cand, dot(n, up_), wa, wb);
-        const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
-        double closing = dot(vb - a.velocity, n);
+      for (ContactRecord& k : contacts) {
+        Vec2& va = velocity[k.lower_pos];
+        Vec2& vb = k.fixed ? unused : velocity[k.upper_pos];
+        const Vec2 n = k.normal;
+        double wa = k.inv_mass_lower;
+        double wb = k.inv_mass_upper;
+        carry(k.fixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
+        double closing = dot((k.fixed ? Vec2{} : vb) - va, n);
         // An immovable supporter can stop the bodies it carries but never lift them:
         // its own motion away from them counts as zero. Otherwise a supported body
         // moving up hands its velocity to every body above it, all the way up a pile.
-        if (wa == 0.0 && !cand.fixed) closing += std::max(dot(a.velocity, n), 0.0);
-        if (wb == 0.0 && !cand.fixed) closing -= std::min(dot(b.velocity, n), 0.0);
+        if (wa == 0.0 && !k.fixed) closing += std::max(dot(va, n), 0.0);
+        if (wb == 0.0 && !k.fixed) closing -= std::min(dot(vb, n), 0.0);
         if (wa + wb <= 0.0) continue;
         // Sequential impulses: the impulse accumulated on a contact may shrink again
         // but never pull (stay >= 0), so iterations converge to a velocity that
         // neither approaches nor separates from resting contacts.
-        double& total = w_.contact_impulses_[i];
-        if (iteration == 0 && w_.contact_warm_[i] > 0.0) {
+        double& total = k.impulse;
+        if (iteration == 0 && k.warm > 0.0) {
           // Warm start: begin from last step's impulse on this pair, so resting
           // contacts converge over steps instead of within one.
-          total = w_.contact_warm_[i];
-          a.velocity -= n * (total * wa);
-          if (!cand.fixed) b.velocity += n * (total * wb);
+          total = k.warm;
+          va -= n * (total * wa);
+          if (!k.fixed) vb += n * (total * wb);
           changed = true;
-          if (w_.contact_mu_[i] > 0.0) apply_contact_friction(i, a, b, wa, wb);
+          if (k.mu > 0.0) apply_contact_friction(k, va, vb, wa, wb);
           continue;
         }
-        const double wanted = std::max(total + (w_.contact_targets_[i] - closing) / (wa + wb), 0.0);
+        const double wanted = std::max(total + (k.target - closing) / (wa + wb), 0.0);
         const double impulse = wanted - total;
         if (impulse != 0.0) {
           total = wanted;
-          a.velocity -= n * (impulse * wa);
-          if (!cand.fixed) b.velocity += n * (impulse * wb);
+          va -= n * (impulse * wa);
+          if (!k.fixed) vb += n * (impulse * wb);
           changed = changed || std::fabs(impulse) > 1.0e-12;
         }
-        if (w_.contact_mu_[i] > 0.0) changed = apply_contact_friction(i, a, b, wa, wb) || changed;
+        if (k.mu > 0.0) changed = apply_contact_friction(k, va, vb, wa, wb) || changed;
       }
       if (!changed && iteration > 0) break;
     }
+    for (std::uint32_t p = 0; p < active; ++p) body(w_.active_[p]).velocity = velocity[p];
     if (s_.warm_starting) remember_impulses();
+  }
+
+  // One marked candidate as a contact record (targets from the velocities before
+  // any impulse or cancellation of this phase).
+  void gather_contact(std::uint32_t c) {
+    const Candidate& cand = w_.candidates_[c];
+    const Body& a = body(cand.lower);
+    const Body& b = body(cand.upper);
+    ContactRecord& k = w_.contacts_[contact_count_++];
+    k.lower = cand.lower;
+    k.upper = cand.upper;
+    k.lower_pos = cand.lower_pos;
+    k.upper_pos = cand.upper_pos;
+    k.normal = w_.contact_normal_[c];
+    k.up = dot(k.normal, up_);
+    k.inv_mass_lower = a.inv_mass;
+    k.inv_mass_upper = cand.fixed ? 0.0 : b.inv_mass;
+    const double closing = dot(b.velocity - a.velocity, k.normal);
+    const double e = mix_restitution(a.restitution, b.restitution);
+    k.target = closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
+    k.mu = mix_contact_friction(a.contact_friction, b.contact_friction);
+    k.warm = s_.warm_starting ? w_.warm_impulse(cand.lower, cand.upper, b.generation) : 0.0;
+    k.impulse = 0.0;
+    k.tangent_impulse = 0.0;
+    k.upper_generation = b.generation;
+    k.fixed = cand.fixed;
+    if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, k, closing);
+    if (hold_) {
+      w_.in_contact_[cand.lower_pos] = 1;
+      if (!cand.fixed) w_.in_contact_[cand.upper_pos] = 1;
+    }
   }
 
   // Coulomb friction: the tangential impulse accumulated on a contact stays within
   // mu times its normal impulse (a contact that pushes nothing holds nothing).
-  bool apply_contact_friction(std::size_t i, Body& a, Body& b, double wa, double wb) {
-    const Candidate& cand = w_.candidates_[w_.contacts_[i].candidate];
-    const Vec2 n = w_.contacts_[i].normal;
+  bool apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa, double wb) {
+    const Vec2 n = k.normal;
     const Vec2 t{-n.y, n.x};
-    const Vec2 vb = cand.fixed ? Vec2{} : b.velocity;
-    const double sliding = dot(vb - a.velocity, t);
-    const double limit = w_.contact_mu_[i] * w_.contact_impulses_[i];
-    double& total = w_.contact_tangent_impulses_[i];
+    const double sliding = dot((k.fixed ? Vec2{} : vb) - va, t);
+    const double limit = k.mu * k.impulse;
+    double& total = k.tangent_impulse;
     const double wanted = std::clamp(total - sliding / (wa + wb), -limit, limit);
     const double impulse = wanted - total;
     if (impulse == 0.0) return false;
     total = wanted;
-    a.velocity -= t * (impulse * wa);
-    if (!cand.fixed) b.velocity += t * (impulse * wb);
+    va -= t * (impulse * wa);
+    if (!k.fixed) vb += t * (impulse * wb);
     return std::fabs(impulse) > 1.0e-12;
   }
 
@@ -732,16 +831,25 @@ class StepRunner {
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
   void remember_impulses() {
-    for (std::uint32_t slot : w_.active_) w_.warm[slot].count = 0;
-    const auto& contacts = w_.contacts_;
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const double total = w_.contact_impulses_[i];
-      if (total <= 0.0) continue;
-      const Candidate& cand = w_.candidates_[contacts[i].candidate];
-      WarmImpulses& kept = w_.warm[cand.lower];
-      if (kept.count < WarmImpulses::kSlots) {
-        kept.entries[kept.count++] = {cand.upper, body(cand.upper).generation, total};
+    // Contacts come grouped by the lower body's position: one walk rewrites the
+    // pool in processing order.
+    const std::span<const ContactRecord> contacts(w_.contacts_.data(), contact_count_);
+    auto& pool = w_.warm_pool;
+    pool.clear();
+    std::size_t i = 0;
+    for (std::uint32_t p = 0; p < w_.active_.size(); ++p) {
+      const std::uint32_t slot = w_.active_[p];
+      const auto first = static_cast<std::uint32_t>(pool.size());
+      std::uint8_t count = 0;
+      for (; i < contacts.size() && contacts[i].lower_pos == p; ++i) {
+        const ContactRecord& k = contacts[i];
+        if (!(k.impulse <= 0.0) && count < kWarmSlots) {
+          pool.push_back({k.upper, k.upper_generation, k.impulse});
+          ++count;
+        }
       }
+      w_.warm_first[slot] = first;
+      w_.warm_count[slot] = count;
     }
   }
 
@@ -750,24 +858,21 @@ class StepRunner {
   // body jammed against others (a row pressed to a wall) keeps the velocity the
   // contact iterations could not remove: it is put back in place every step while
   // its velocity grows, and the pile never comes to rest.
-  void cancel_velocity_into_corrections() {
-    const double per_second = 1.0 / h_;
-    for (std::uint32_t slot : w_.active_) {
-      Body& b = body(slot);
-      // Per axis, so that a push up from a floor cannot turn into sideways motion.
-      for (int axis = 0; axis < 2; ++axis) {
-        const double pushed = component(b.correction, axis);
-        double& v = component(b.velocity, axis);
-        if (pushed > 0.0 && v < 0.0) v = std::min(0.0, v + pushed * per_second);
-        if (pushed < 0.0 && v > 0.0) v = std::max(0.0, v + pushed * per_second);
-      }
+  static Vec2 cancelled_velocity(Vec2 v, Vec2 correction, double per_second) {
+    // Per axis, so that a push up from a floor cannot turn into sideways motion.
+    for (int axis = 0; axis < 2; ++axis) {
+      const double pushed = component(correction, axis);
+      double& u = component(v, axis);
+      if (pushed > 0.0 && u < 0.0) u = std::min(0.0, u + pushed * per_second);
+      if (pushed < 0.0 && u > 0.0) u = std::max(0.0, u + pushed * per_second);
     }
+    return v;
   }
 
   // A sleeping body wakes when it is hit: harder than a resting contact presses
   // (from above), or at all from the side or below.
   void wake_if_hit(const Candidate& cand, const ContactRecord& contact, double closing) {
-    const bool resting_on_it = dot(contact.normal, up_) < -kSupportCosine;
+    const bool resting_on_it = contact.up < -kSupportCosine;
     if (-closing > wake_speed(resting_on_it)) w_.to_wake_.push_back(cand.upper);
   }
   double wake_speed(bool resting_on_it) const {
@@ -867,6 +972,10 @@ class StepRunner {
   bool any_active_circle_ = false;
   bool any_contact_friction_ = false;
   bool order_changed_ = true;
+  bool scattered_ = false;           // the processing order is far from slot order
+  bool all_inside_ = false;          // integrate() found every body inside its fat box
+  std::uint32_t contact_count_ = 0;  // records in use at the front of contacts_
+  double surely_slow_;               // squared speeds at or below this are under max_speed
 };
 
 void WorldImpl::step(double dt) {

@@ -73,9 +73,12 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
     index = static_cast<std::uint32_t>(bodies.size());
     bodies.emplace_back();
     warm.emplace_back();
+    warm_count.push_back(0);
+    warm_first.push_back(kWarmInSlot);
   }
   Body& b = bodies[index];
-  warm[index].count = 0;
+  warm_count[index] = 0;
+  warm_first[index] = kWarmInSlot;
   const std::uint32_t generation = b.generation + 1;
   b = Body{};
   b.generation = generation;
@@ -146,6 +149,15 @@ void WorldImpl::wake(std::uint32_t index) {
 }
 
 void WorldImpl::rebuild_lists() {
+  // The pool holds the entries of the awake bodies as the last restitution phase
+  // wrote them; the list is about to change, so each keeps its own in its slot.
+  // (A slot reused by add_body since is already kWarmInSlot and empty.)
+  for (std::uint32_t slot : active_) {
+    if (warm_first[slot] == kWarmInSlot) continue;
+    std::copy_n(warm_pool.begin() + warm_first[slot], warm_count[slot], warm[slot].entries);
+    warm_first[slot] = kWarmInSlot;
+  }
+  warm_pool.clear();
   active_.clear();
   fixed_.clear();
   fixed_boxes_.clear();

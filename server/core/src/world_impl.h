@@ -12,23 +12,19 @@ namespace phys {
 
 // Last sub-step's contact impulses of a body toward the bodies above it in the
 // processing order (warm start), kept apart from Body so the hot loops stay small.
+// At most kWarmSlots per body. The awake bodies' entries sit in one pool, written
+// in processing order by the restitution phase and read back in that order by the
+// next one; a body that leaves the awake list keeps its entries in its own slot
+// (WarmImpulses) until it is awake again.
+struct WarmEntry {
+  std::uint32_t partner;
+  std::uint32_t generation;
+  double impulse;
+};
+constexpr std::uint8_t kWarmSlots = 8;
+constexpr std::uint32_t kWarmInSlot = UINT32_MAX;  // warm_first: entries in WarmImpulses
 struct WarmImpulses {
-  struct Entry {
-    std::uint32_t partner;
-    std::uint32_t generation;
-    double impulse;
-  };
-  static constexpr std::uint8_t kSlots = 8;
-  Entry entries[kSlots]{};
-  std::uint8_t count = 0;
-  double find(std::uint32_t partner, std::uint32_t partner_generation) const {
-    for (std::uint8_t i = 0; i < count; ++i) {
-      if (entries[i].partner == partner && entries[i].generation == partner_generation) {
-        return entries[i].impulse;
-      }
-    }
-    return 0.0;
-  }
+  WarmEntry entries[kWarmSlots]{};
 };
 
 struct Body {
@@ -44,12 +40,14 @@ struct Body {
   bool alive = false;
   bool awake = true;
   std::uint32_t generation = 0;
+  // Warm: the materials, read once per contact by the restitution phase (next to
+  // the hot fields, so that a contact does not touch a body's cold line).
+  double restitution = 0.0;
+  double contact_friction = 0.0;
   // Cold: read once a step or less.
   Vec2 acceleration{};
   double mass = 0.0;
-  double restitution = 0.0;
   Vec2 friction{};
-  double contact_friction = 0.0;
   double still_time = 0.0;  // seconds it has stayed near still_anchor
   // How much of gravity its contacts held up in the last sub-step (m/s^2, from 0
   // to |g|), applied as a force in the next one so that a resting body does not
@@ -72,11 +70,24 @@ struct Candidate {
   bool fixed;
 };
 
-// A pair found touching or overlapping, kept for the restitution phase.
+// A pair found touching or overlapping, with everything the restitution phase's
+// iterations read about it, so that they walk one array and the two bodies only.
 struct ContactRecord {
-  std::uint32_t candidate;
-  Vec2 normal;   // from lower toward upper
-  bool support;  // the normal is within 60 degrees of "up" (against gravity)
+  std::uint32_t lower;      // slot
+  std::uint32_t upper;      // slot
+  std::uint32_t lower_pos;  // positions in the processing order (upper_pos unused when fixed)
+  std::uint32_t upper_pos;
+  Vec2 normal;  // from lower toward upper
+  double up;    // dot(normal, up): the support test of shock propagation
+  double inv_mass_lower;
+  double inv_mass_upper;   // 0 when fixed
+  double target;           // the closing velocity the contact should end with
+  double warm;             // last sub-step's impulse on this pair (warm start)
+  double mu;               // contact friction, mixed
+  double impulse;          // accumulated normal impulse
+  double tangent_impulse;  // accumulated friction impulse
+  std::uint32_t upper_generation;
+  bool fixed;  // upper is a static or sleeping body
 };
 
 class WorldImpl {
@@ -97,7 +108,23 @@ class WorldImpl {
   StepProfile profile;
   std::uint64_t steps = 0;
   std::vector<Body> bodies;
-  std::vector<WarmImpulses> warm;  // per slot
+  // Warm-start impulses, per slot: how many, and where (warm_pool from warm_first,
+  // or warm[slot] when warm_first is kWarmInSlot).
+  std::vector<std::uint8_t> warm_count;
+  std::vector<std::uint32_t> warm_first;
+  std::vector<WarmImpulses> warm;
+  std::vector<WarmEntry> warm_pool;
+  double warm_impulse(std::uint32_t slot, std::uint32_t partner,
+                      std::uint32_t partner_generation) const {
+    const WarmEntry* entries =
+        warm_first[slot] == kWarmInSlot ? warm[slot].entries : warm_pool.data() + warm_first[slot];
+    for (std::uint8_t i = 0; i < warm_count[slot]; ++i) {
+      if (entries[i].partner == partner && entries[i].generation == partner_generation) {
+        return entries[i].impulse;
+      }
+    }
+    return 0.0;
+  }
 
  private:
   friend class StepRunner;
@@ -121,32 +148,26 @@ class WorldImpl {
   std::size_t fixed_sleeping_ = 0;  // sleeping bodies among them
 
   // Per-step scratch, kept to avoid allocating every step.
-  std::vector<Aabb> active_boxes_;  // what each awake body may reach this sub-step
-  std::vector<Aabb> fat_boxes_;     // the boxes the current candidates were found with
+  std::vector<Aabb> fat_boxes_;  // the boxes the current candidates were found with
   bool candidates_valid_ = false;
   std::vector<BodyPair> active_pairs_;
   std::vector<std::uint32_t> overlaps_;
   std::vector<Candidate> candidates_;
-  std::vector<std::uint32_t> first_candidate_;  // per active position: CSR offsets
-  std::vector<ContactRecord> contacts_;
+  std::vector<std::uint32_t> first_candidate_;       // per active position: CSR offsets
+  std::vector<ContactRecord> contacts_;              // grow-only; the step counts those in use
   std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
-  std::vector<std::uint8_t> contact_support_;
-  std::vector<double> contact_gap_;      // per candidate, when marked: 0, or the gap of a near miss
-  std::vector<std::uint8_t> supported_;  // per position in the processing order
-  std::vector<Vec2> step_velocity_;      // velocity at the end of the free motion
+  std::vector<std::uint8_t> supported_;              // per position in the processing order
+  std::vector<Vec2> step_velocity_;                  // velocity at the end of the free motion
+  std::vector<Vec2> solver_velocity_;    // the restitution phase's velocities, by position
   std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
-  std::vector<Vec2> velocity_before_contacts_;  // per position, when gravity is on
+  std::vector<double> contact_gap_;      // per candidate, when marked: 0, or the gap of a near miss
+  std::vector<Vec2> velocity_before_contacts_;  // per position, when support is held
   std::vector<std::uint8_t> in_contact_;        // per position
   std::vector<Vec2> step_start_;                // position at the start of the sub-step (friction)
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
-  std::vector<double> contact_targets_;
-  std::vector<double> contact_impulses_;
-  std::vector<double> contact_warm_;
-  std::vector<double> contact_tangent_impulses_;
-  std::vector<double> contact_mu_;
   std::vector<std::uint8_t> sleep_ready_;
   std::vector<std::uint32_t> island_parent_;
 };
