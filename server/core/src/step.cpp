@@ -96,7 +96,6 @@ class StepRunner {
     collide_on_x();
     {
       PhaseTimer t(s_.profile, w_.profile.resolve);
-      if (hold_) before_contacts();
       restitution();
       if (hold_) update_held();
     }
@@ -191,13 +190,21 @@ class StepRunner {
         // A resting body moves as if its support still held it (it does not sink
         // into it), but its velocity keeps all of gravity: the contacts must take
         // that away again, which is how the next step knows the support is there.
+        // (Only along the axes that "up" has a part on: with gravity straight down,
+        // only y.)
         const Vec2 moving = moving_acceleration(b);
-        d = {integrate_axis(s_.integrator, b.position.x, b.velocity.x, moving.x, b.friction.x, h_)
-                     .position -
-                 b.position.x,
-             integrate_axis(s_.integrator, b.position.y, b.velocity.y, moving.y, b.friction.y, h_)
-                     .position -
-                 b.position.y};
+        if (up_.x != 0.0) {
+          d.x =
+              integrate_axis(s_.integrator, b.position.x, b.velocity.x, moving.x, b.friction.x, h_)
+                  .position -
+              b.position.x;
+        }
+        if (up_.y != 0.0) {
+          d.y =
+              integrate_axis(s_.integrator, b.position.y, b.velocity.y, moving.y, b.friction.y, h_)
+                  .position -
+              b.position.y;
+        }
       }
       // A squared speed below a quarter of the limit's square is surely under the
       // limit (sqrt of it is about half the limit): no square root for the usual body.
@@ -698,6 +705,10 @@ class StepRunner {
     // counts as zero): they work on a dense copy by position, written back at the end.
     auto& velocity = w_.solver_velocity_;
     velocity.resize(active);
+    if (hold_) {  // what the contacts will do along "up" is measured from here
+      w_.up_speed_before_contacts_.resize(active);
+      w_.in_contact_.assign(active, 0);
+    }
     for (std::uint32_t p = 0; p < active; ++p) {
       for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
         if (w_.contact_of_candidate_[c] != kNone) gather_contact(c);
@@ -705,6 +716,7 @@ class StepRunner {
       // Cancelled in a register and stored whole: reading back a velocity just
       // stored one half at a time stalls the load.
       Body& b = body(w_.active_[p]);
+      if (hold_) w_.up_speed_before_contacts_[p] = dot(b.velocity, up_);
       const Vec2 v = cancelled_velocity(b.velocity, b.correction, per_second);
       b.velocity = v;
       velocity[p] = v;
@@ -808,15 +820,6 @@ class StepRunner {
     return std::fabs(impulse) > 1.0e-12;
   }
 
-  void before_contacts() {
-    const std::size_t n = w_.active_.size();
-    w_.velocity_before_contacts_.resize(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      w_.velocity_before_contacts_[p] = body(w_.active_[p]).velocity;
-    }
-    w_.in_contact_.assign(n, 0);
-  }
-
   // What the contacts did to a body's velocity this sub-step, along "up", is how
   // much of gravity they held; the next sub-step applies it as a force from the
   // start (the support a resting body will get again). Only for a body that is
@@ -825,13 +828,14 @@ class StepRunner {
   // hold it up harder than gravity pulls it down.
   void update_held() {
     const double g = length(s_.gravity);
+    const double rest_squared = rest_speed_ * rest_speed_;
     for (std::size_t p = 0; p < w_.active_.size(); ++p) {
       Body& b = body(w_.active_[p]);
-      if (!w_.in_contact_[p] || length(b.velocity) > rest_speed_) {
+      if (!w_.in_contact_[p] || dot(b.velocity, b.velocity) > rest_squared) {
         b.held = 0.0;
         continue;
       }
-      const double lift = dot(b.velocity - w_.velocity_before_contacts_[p], up_) / h_;
+      const double lift = (dot(b.velocity, up_) - w_.up_speed_before_contacts_[p]) / h_;
       b.held = std::clamp(lift, 0.0, g);
     }
   }

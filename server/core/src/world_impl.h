@@ -162,9 +162,9 @@ class WorldImpl {
   std::vector<Vec2> solver_velocity_;    // the restitution phase's velocities, by position
   std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
   std::vector<double> contact_gap_;      // per candidate, when marked: 0, or the gap of a near miss
-  std::vector<Vec2> velocity_before_contacts_;  // per position, when support is held
-  std::vector<std::uint8_t> in_contact_;        // per position
-  std::vector<Vec2> step_start_;                // position at the start of the sub-step (friction)
+  std::vector<double> up_speed_before_contacts_;  // per position, when support is held
+  std::vector<std::uint8_t> in_contact_;          // per position
+  std::vector<Vec2> step_start_;  // position at the start of the sub-step (friction)
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
