@@ -89,7 +89,7 @@ class StepRunner {
     }
     w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
     w_.contact_normal_.resize(w_.candidates_.size());
-    w_.contact_gap_.resize(w_.candidates_.size());
+    w_.contact_near_miss_.resize(w_.candidates_.size());
     move(1);
     if (any_active_box_) collide_boxes_on(1);
     move(0);
@@ -522,7 +522,7 @@ class StepRunner {
         // nothing of each other: their near miss would only add work to a stack's
         // velocity pass (a third of it in the 5,050-box pyramid).
         const bool side_by_side = !cand.fixed && std::fabs(dot(n, up_)) < 1.0 - kAlongGravity;
-        if (-gap <= near_miss_margin() && !side_by_side) record_near_miss(cand, n, -gap);
+        if (-gap <= near_miss_margin() && !side_by_side) record_near_miss(cand, n);
         return false;
       }
       const double depth =
@@ -565,7 +565,7 @@ class StepRunner {
       if (!contact.colliding) return false;
       const double depth = contact.penetration - margin;
       if (depth < 0.0) {
-        record_near_miss(cand, contact.normal, -depth);
+        record_near_miss(cand, contact.normal);
         return false;
       }
       return separate(cand, a, b, contact.normal, depth);
@@ -653,7 +653,7 @@ class StepRunner {
   // by no velocity).
   double near_miss_margin() const { return 2.0 * s_.slop; }
 
-  void record_near_miss(const Candidate& cand, Vec2 n, double gap) {
+  void record_near_miss(const Candidate& cand, Vec2 n) {
     // A near miss carries weight like a touching contact: the support marks pass
     // through it, or a body resting a slop above its support would not count as
     // supported, and what it carries would push it down into the pile.
@@ -674,16 +674,16 @@ class StepRunner {
     const Vec2 vb = cand.fixed ? Vec2{} : body(cand.upper).velocity;
     if (dot(vb - body(cand.lower).velocity, n) < -rest_speed_) return;
     const auto c = static_cast<std::uint32_t>(&cand - w_.candidates_.data());
-    if (w_.contact_of_candidate_[c] != kNone && w_.contact_gap_[c] == 0.0) return;
+    if (w_.contact_of_candidate_[c] != kNone && !w_.contact_near_miss_[c]) return;
     record_contact(c, n);
-    w_.contact_gap_[c] = gap;
+    w_.contact_near_miss_[c] = 1;
   }
 
   // Marks candidate c as a contact with normal n; the restitution phase gathers
   // the marked candidates in candidate order (so no sort is needed).
   void record_contact(std::uint32_t c, Vec2 n) {
     w_.contact_of_candidate_[c] = 1;
-    w_.contact_gap_[c] = 0.0;
+    w_.contact_near_miss_[c] = 0;
     w_.contact_normal_[c] = n;
   }
 

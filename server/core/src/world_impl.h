@@ -159,9 +159,9 @@ class WorldImpl {
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
   std::vector<std::uint8_t> supported_;              // per position in the processing order
   std::vector<Vec2> step_velocity_;                  // velocity at the end of the free motion
-  std::vector<Vec2> solver_velocity_;    // the restitution phase's velocities, by position
-  std::vector<Vec2> step_displacement_;  // free-motion displacement this sub-step
-  std::vector<double> contact_gap_;      // per candidate, when marked: 0, or the gap of a near miss
+  std::vector<Vec2> solver_velocity_;             // the restitution phase's velocities, by position
+  std::vector<Vec2> step_displacement_;           // free-motion displacement this sub-step
+  std::vector<std::uint8_t> contact_near_miss_;   // per candidate, when marked: a near miss
   std::vector<double> up_speed_before_contacts_;  // per position, when support is held
   std::vector<std::uint8_t> in_contact_;          // per position
   std::vector<Vec2> step_start_;  // position at the start of the sub-step (friction)
