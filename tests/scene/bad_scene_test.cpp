@@ -272,7 +272,8 @@ TEST(BadScene, WorldSettingsAreCarriedOver) {
   const SceneDef def = accepted(
       "world { gravity { x: 1 y: 2 } tick_rate: 120 steps_per_frame: 3 slop: 0.001\n"
       "  max_acceleration: 20 integrator: INTEGRATOR_SEMI_IMPLICIT_EULER substeps: 4\n"
-      "  position_iterations: 8 velocity_iterations: 2 continuous: false sleeping: false }\n" +
+      "  position_iterations: 8 velocity_iterations: 2 continuous: false sleeping: false\n"
+      "  shock_propagation: false hold_resting_support: false }\n" +
       std::string(kSpawn));
   EXPECT_EQ(def.world.gravity, (phys::Vec2{1, 2}));
   EXPECT_EQ(def.tick_rate, 120.0);
@@ -285,6 +286,8 @@ TEST(BadScene, WorldSettingsAreCarriedOver) {
   EXPECT_EQ(def.world.velocity_iterations, 2);
   EXPECT_FALSE(def.world.continuous);
   EXPECT_FALSE(def.world.sleeping);
+  EXPECT_FALSE(def.world.shock_propagation);
+  EXPECT_FALSE(def.world.hold_resting_support);
   EXPECT_FALSE(def.world.has_bounds);
   // Explicit zero gravity differs from unset (the default, -9.81 down).
   EXPECT_EQ(accepted("world { gravity { } }\n" + std::string(kSpawn)).world.gravity,

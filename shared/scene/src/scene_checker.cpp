@@ -208,6 +208,9 @@ bool check_world(Checker& check, const proto::World& world, SceneDef* def) {
   if (world.has_continuous()) settings.continuous = world.continuous();
   if (world.has_sleeping()) settings.sleeping = world.sleeping();
   if (world.has_shock_propagation()) settings.shock_propagation = world.shock_propagation();
+  if (world.has_hold_resting_support()) {
+    settings.hold_resting_support = world.hold_resting_support();
+  }
   if (world.has_rest_speed()) {
     if (!check.not_negative(base.child("rest_speed"), world.rest_speed())) return false;
     settings.rest_speed = world.rest_speed();
