@@ -399,30 +399,23 @@ class StepRunner {
     }
   }
 
-  // The unit normal from `mover` toward `obstacle` where they touch: along the line of
-  // centres for two circles, from a circle's centre to the nearest point of a box,
-  // and along the swept axis (in the direction of travel, `toward`) for two faces.
+  // The unit normal from `mover` toward `obstacle` where they touch: the narrowphase
+  // formulas' normal (line of centres, or a circle's centre to the nearest point of
+  // a box), asked with a radius that always reaches; for two faces, along the swept
+  // axis in the direction of travel (`toward`).
   static Vec2 touching_normal(const Body& mover, const Body& obstacle, int axis, double toward) {
+    if (mover.shape == Shape::Circle && obstacle.shape == Shape::Circle) {
+      return collide_circles(mover.position, kInfinity, obstacle.position, 0.0).normal;
+    }
+    if (mover.shape == Shape::Circle) {
+      return collide_circle_box(mover.position, kInfinity, obstacle.bounds()).normal;
+    }
+    if (obstacle.shape == Shape::Circle) {
+      return -collide_circle_box(obstacle.position, kInfinity, mover.bounds()).normal;
+    }
     Vec2 along{};
     component(along, axis) = toward;
-    Vec2 d{};
-    if (mover.shape == Shape::Circle && obstacle.shape == Shape::Circle) {
-      d = obstacle.position - mover.position;
-    } else if (mover.shape == Shape::Circle) {
-      const Aabb box = obstacle.bounds();
-      d = Vec2{std::clamp(mover.position.x, box.min.x, box.max.x),
-               std::clamp(mover.position.y, box.min.y, box.max.y)} -
-          mover.position;
-    } else if (obstacle.shape == Shape::Circle) {
-      const Aabb box = mover.bounds();
-      d = obstacle.position - Vec2{std::clamp(obstacle.position.x, box.min.x, box.max.x),
-                                   std::clamp(obstacle.position.y, box.min.y, box.max.y)};
-    } else {
-      return along;
-    }
-    const double len = length(d);
-    // A centre inside the other shape (only by rounding): the direction of travel.
-    return len > 0.0 ? d * (1.0 / len) : along;
+    return along;
   }
 
   // How close two bodies must be after the first pass to be worth another: within
