@@ -186,25 +186,21 @@ class StepRunner {
           integrate_axis(s_.integrator, b.position.y, b.velocity.y, a.y, b.friction.y, h_);
       Vec2 v{mx.velocity, my.velocity};
       Vec2 d{mx.position - b.position.x, my.position - b.position.y};
-      if (b.held > 0.0) {
-        // A resting body moves as if its support still held it (it does not sink
-        // into it), but its velocity keeps all of gravity: the contacts must take
-        // that away again, which is how the next step knows the support is there.
-        // (Only along the axes that "up" has a part on: with gravity straight down,
-        // only y.)
-        const Vec2 moving = moving_acceleration(b);
-        if (up_.x != 0.0) {
-          d.x =
-              integrate_axis(s_.integrator, b.position.x, b.velocity.x, moving.x, b.friction.x, h_)
+      // A resting body moves as if its contacts still held it (it does not sink
+      // into its support, nor creep along it when friction holds a push), but its
+      // velocity keeps all of its acceleration: the contacts must take that away
+      // again, which is how the next step knows they are there.
+      if (b.held.x != 0.0) {
+        d.x = integrate_axis(s_.integrator, b.position.x, b.velocity.x, a.x + b.held.x,
+                             b.friction.x, h_)
                   .position -
               b.position.x;
-        }
-        if (up_.y != 0.0) {
-          d.y =
-              integrate_axis(s_.integrator, b.position.y, b.velocity.y, moving.y, b.friction.y, h_)
+      }
+      if (b.held.y != 0.0) {
+        d.y = integrate_axis(s_.integrator, b.position.y, b.velocity.y, a.y + b.held.y,
+                             b.friction.y, h_)
                   .position -
               b.position.y;
-        }
       }
       // A squared speed below a quarter of the limit's square is surely under the
       // limit (sqrt of it is about half the limit): no square root for the usual body.
@@ -238,7 +234,7 @@ class StepRunner {
   // The acceleration a body moves by: gravity less what its contacts held up last
   // sub-step (see Body::held).
   Vec2 moving_acceleration(const Body& b) const {
-    return gravity_on_ ? b.acceleration + s_.gravity + up_ * b.held : b.acceleration;
+    return gravity_on_ ? b.acceleration + s_.gravity + b.held : b.acceleration;
   }
 
   // What a body may reach this sub-step, given its free-motion displacement d:
@@ -629,7 +625,8 @@ class StepRunner {
     const Vec2 moved_b = cand.fixed ? Vec2{} : b.position - w_.step_start_[cand.upper_pos];
     const Vec2 relative = moved_b - moved_a;
     const Vec2 slide = relative - n * dot(relative, n);
-    const double mu = mix_contact_friction(a.contact_friction, b.contact_friction);
+    const double mu = mix_contact_friction(a.contact_friction, b.contact_friction) *
+                      load_on(cand.fixed, a, b, dot(n, up_));
     if (!(length(slide) <= mu * push)) return;
     a.position += slide * wa;
     b.position -= slide * wb;
@@ -699,7 +696,7 @@ class StepRunner {
     auto& velocity = w_.solver_velocity_;
     velocity.resize(active);
     if (hold_) {  // what the contacts will do along "up" is measured from here
-      w_.up_speed_before_contacts_.resize(active);
+      w_.velocity_before_contacts_.resize(active);
       w_.in_contact_.assign(active, 0);
     }
     for (std::uint32_t p = 0; p < active; ++p) {
@@ -709,7 +706,7 @@ class StepRunner {
       // Cancelled in a register and stored whole: reading back a velocity just
       // stored one half at a time stalls the load.
       Body& b = body(w_.active_[p]);
-      if (hold_) w_.up_speed_before_contacts_[p] = dot(b.velocity, up_);
+      if (hold_) w_.velocity_before_contacts_[p] = b.velocity;
       const Vec2 v = cancelled_velocity(b.velocity, b.correction, per_second);
       b.velocity = v;
       velocity[p] = v;
@@ -746,7 +743,18 @@ class StepRunner {
           va -= n * (total * wa);
           if (!k.fixed) vb += n * (total * wb);
           changed = true;
-          if (k.mu > 0.0) apply_contact_friction(k, va, vb, wa, wb);
+          if (k.mu > 0.0) {
+            // Friction warm-starts too, within the cone of the warm normal impulse
+            // (Box2D's warm start of the tangent impulse): a pile holds its
+            // sideways loads through chains of friction that a few iterations from
+            // zero would not rebuild every step.
+            const Vec2 t{-n.y, n.x};
+            const double limit = k.mu * total;
+            k.tangent_impulse = std::clamp(k.warm_tangent, -limit, limit);
+            va -= t * (k.tangent_impulse * wa);
+            if (!k.fixed) vb += t * (k.tangent_impulse * wb);
+            apply_contact_friction(k, va, vb, wa, wb);
+          }
           continue;
         }
         const double wanted = std::max(total + (k.target - closing) / (wa + wb), 0.0);
@@ -763,6 +771,7 @@ class StepRunner {
     }
     for (std::uint32_t p = 0; p < active; ++p) body(w_.active_[p]).velocity = velocity[p];
     if (s_.warm_starting) remember_impulses();
+    if (shock_ && any_contact_friction_) update_loads(contacts);
   }
 
   // One marked candidate as a contact record (targets from the velocities before
@@ -783,8 +792,12 @@ class StepRunner {
     const double closing = dot(b.velocity - a.velocity, k.normal);
     const double e = mix_restitution(a.restitution, b.restitution);
     k.target = closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;
-    k.mu = mix_contact_friction(a.contact_friction, b.contact_friction);
-    k.warm = s_.warm_starting ? w_.warm_impulse(cand.lower, cand.upper, b.generation) : 0.0;
+    k.mu = mix_contact_friction(a.contact_friction, b.contact_friction) *
+           load_on(cand.fixed, a, b, k.up);
+    const WarmEntry* warm =
+        s_.warm_starting ? w_.warm_entry(cand.lower, cand.upper, b.generation) : nullptr;
+    k.warm = warm != nullptr ? warm->impulse : 0.0;
+    k.warm_tangent = warm != nullptr ? warm->tangent_impulse : 0.0;
     k.impulse = 0.0;
     k.tangent_impulse = 0.0;
     k.upper_generation = b.generation;
@@ -813,24 +826,76 @@ class StepRunner {
     return std::fabs(impulse) > 1.0e-12;
   }
 
-  // What the contacts did to a body's velocity this sub-step, along "up", is how
-  // much of gravity they held; the next sub-step applies it as a force from the
-  // start (the support a resting body will get again). Only for a body that is
-  // resting after its contacts (no faster than the rest speed): an impact is no
-  // support. Between 0 and |g|: contacts hold a body up, never pull it, and never
-  // hold it up harder than gravity pulls it down.
+  // The load factor of a contact's friction: for a support contact (within 60
+  // degrees of vertical), the load of the body on top; 1 for any other.
+  static double load_on(bool fixed, const Body& lower, const Body& upper, double up) {
+    if (up < -kSupportCosine) return lower.load;
+    if (up > kSupportCosine && !fixed) return upper.load;
+    return 1.0;
+  }
+
+  // Shock propagation makes a supported body immovable for what rests on it, so its
+  // own contacts below push up only its own weight: the weight of the pile above it
+  // never reaches them, and friction, bounded by the push, holds it as if nothing
+  // rested on it. Bodies deep in a pile are then pushed aside by their neighbours
+  // and the pile creeps down. So the load is put back, for friction only: from the
+  // top of the pile down, each body's supports carry its own push plus what rests
+  // on it, shared among them as they share its own push, and its load factor
+  // (Body::load) is that total over its own. Contacts are grouped by their lower
+  // body's position in the processing order (bottom up), so one walk from the end
+  // meets every body's load from above before its own supports.
+  void update_loads(std::span<const ContactRecord> contacts) {
+    const std::size_t n = w_.active_.size();
+    auto& own = w_.support_impulse_;
+    auto& carried = w_.carried_impulse_;
+    own.assign(n, 0.0);
+    carried.assign(n, 0.0);
+    for (const ContactRecord& k : contacts) {
+      if (k.up < -kSupportCosine) own[k.lower_pos] -= k.impulse * k.up;
+      if (k.up > kSupportCosine && !k.fixed) own[k.upper_pos] += k.impulse * k.up;
+    }
+    // A body whose supports pushed less than its weight (landing, or held by the
+    // position passes) shares what it carries as if they had pushed its weight.
+    const double weight = length(s_.gravity) * h_;  // a body's own push, per unit mass
+    const auto factor = [&](std::uint32_t p) {
+      const double resting = std::max(own[p], body(w_.active_[p]).mass * weight);
+      return std::max(1.0, (own[p] + carried[p]) / resting);
+    };
+    for (std::size_t i = contacts.size(); i-- > 0;) {
+      const ContactRecord& k = contacts[i];
+      if (k.fixed) continue;  // a static or sleeping body passes nothing on
+      if (k.up > kSupportCosine) {
+        carried[k.lower_pos] += k.impulse * k.up * factor(k.upper_pos);
+      } else if (k.up < -kSupportCosine) {
+        carried[k.upper_pos] -= k.impulse * k.up * factor(k.lower_pos);
+      }
+    }
+    for (std::uint32_t p = 0; p < n; ++p) body(w_.active_[p]).load = factor(p);
+  }
+
+  // What the contacts did to a body's velocity this sub-step, per axis, is how
+  // much of its acceleration (gravity and its own) they held; the next sub-step
+  // applies it as a force from the start (the support and friction a resting body
+  // will get again). Only for a body that is resting after its contacts (no faster
+  // than the rest speed): an impact is no support. Per axis between 0 and the
+  // acceleration: contacts hold a body back, never pull it, and never hold it back
+  // harder than it is pushed.
   void update_held() {
-    const double g = length(s_.gravity);
     const double rest_squared = rest_speed_ * rest_speed_;
     for (std::size_t p = 0; p < w_.active_.size(); ++p) {
       Body& b = body(w_.active_[p]);
       if (!w_.in_contact_[p] || dot(b.velocity, b.velocity) > rest_squared) {
-        b.held = 0.0;
+        b.held = {};
         continue;
       }
-      const double lift = (dot(b.velocity, up_) - w_.up_speed_before_contacts_[p]) / h_;
-      b.held = std::clamp(lift, 0.0, g);
+      const Vec2 a = b.acceleration + s_.gravity;
+      const Vec2 change = b.velocity - w_.velocity_before_contacts_[p];
+      b.held = {held_part(change.x / h_, a.x), held_part(change.y / h_, a.y)};
     }
+  }
+  // The part of a velocity change (per second) that held back an acceleration a.
+  static double held_part(double change, double a) {
+    return a < 0.0 ? std::clamp(change, 0.0, -a) : std::clamp(change, -a, 0.0);
   }
 
   // Each awake body keeps the impulses of the contacts it was the lower body of.
@@ -848,7 +913,7 @@ class StepRunner {
       for (; i < contacts.size() && contacts[i].lower_pos == p; ++i) {
         const ContactRecord& k = contacts[i];
         if (!(k.impulse <= 0.0) && count < kWarmSlots) {
-          pool.push_back({k.upper, k.upper_generation, k.impulse});
+          pool.push_back({k.upper, k.upper_generation, k.impulse, k.tangent_impulse});
           ++count;
         }
       }
@@ -959,7 +1024,8 @@ class StepRunner {
       Body& b = body(w_.active_[p]);
       b.awake = false;
       b.velocity = {};
-      b.held = 0.0;
+      b.held = {};
+      b.load = 1.0;
       w_.lists_dirty_ = true;
     }
   }

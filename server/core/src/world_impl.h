@@ -20,6 +20,7 @@ struct WarmEntry {
   std::uint32_t partner;
   std::uint32_t generation;
   double impulse;
+  double tangent_impulse;
 };
 constexpr std::uint8_t kWarmSlots = 8;
 constexpr std::uint32_t kWarmInSlot = UINT32_MAX;  // warm_first: entries in WarmImpulses
@@ -49,10 +50,15 @@ struct Body {
   double mass = 0.0;
   Vec2 friction{};
   double still_time = 0.0;  // seconds it has stayed near still_anchor
-  // How much of gravity its contacts held up in the last sub-step (m/s^2, from 0
-  // to |g|), applied as a force in the next one so that a resting body does not
-  // sink into its supports and get pushed back out every step.
-  double held = 0.0;
+  // How much of its acceleration (gravity and its own) its contacts held back in
+  // the last sub-step, per axis (m/s^2), applied as a force in the next one so that
+  // a resting body does not sink into its supports and get pushed back out every
+  // step, nor creep along them when friction holds a push.
+  Vec2 held{};
+  // How many times its own weight its supports carried in the last sub-step (1 for
+  // a body carrying nothing): the weight of what rests on it, which shock
+  // propagation keeps out of its contact impulses, put back into its friction.
+  double load = 1.0;
   Vec2 still_anchor{};
 
   Aabb bounds() const { return {position - half, position + half}; }
@@ -83,6 +89,7 @@ struct ContactRecord {
   double inv_mass_upper;   // 0 when fixed
   double target;           // the closing velocity the contact should end with
   double warm;             // last sub-step's impulse on this pair (warm start)
+  double warm_tangent;     // and its friction impulse
   double mu;               // contact friction, mixed
   double impulse;          // accumulated normal impulse
   double tangent_impulse;  // accumulated friction impulse
@@ -114,16 +121,17 @@ class WorldImpl {
   std::vector<std::uint32_t> warm_first;
   std::vector<WarmImpulses> warm;
   std::vector<WarmEntry> warm_pool;
-  double warm_impulse(std::uint32_t slot, std::uint32_t partner,
-                      std::uint32_t partner_generation) const {
+  // The entry of the pair (slot, partner), or null.
+  const WarmEntry* warm_entry(std::uint32_t slot, std::uint32_t partner,
+                              std::uint32_t partner_generation) const {
     const WarmEntry* entries =
         warm_first[slot] == kWarmInSlot ? warm[slot].entries : warm_pool.data() + warm_first[slot];
     for (std::uint8_t i = 0; i < warm_count[slot]; ++i) {
       if (entries[i].partner == partner && entries[i].generation == partner_generation) {
-        return entries[i].impulse;
+        return &entries[i];
       }
     }
-    return 0.0;
+    return nullptr;
   }
 
  private:
@@ -159,12 +167,14 @@ class WorldImpl {
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
   std::vector<std::uint8_t> supported_;              // per position in the processing order
   std::vector<Vec2> step_velocity_;                  // velocity at the end of the free motion
-  std::vector<Vec2> solver_velocity_;             // the restitution phase's velocities, by position
-  std::vector<Vec2> step_displacement_;           // free-motion displacement this sub-step
-  std::vector<std::uint8_t> contact_near_miss_;   // per candidate, when marked: a near miss
-  std::vector<double> up_speed_before_contacts_;  // per position, when support is held
-  std::vector<std::uint8_t> in_contact_;          // per position
-  std::vector<Vec2> step_start_;  // position at the start of the sub-step (friction)
+  std::vector<Vec2> solver_velocity_;            // the restitution phase's velocities, by position
+  std::vector<Vec2> step_displacement_;          // free-motion displacement this sub-step
+  std::vector<std::uint8_t> contact_near_miss_;  // per candidate, when marked: a near miss
+  std::vector<Vec2> velocity_before_contacts_;   // per position, when support is held
+  std::vector<std::uint8_t> in_contact_;         // per position
+  std::vector<double> support_impulse_;          // per position: what its supports pushed up
+  std::vector<double> carried_impulse_;          // per position: what rests on it pressed down
+  std::vector<Vec2> step_start_;                 // position at the start of the sub-step (friction)
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
