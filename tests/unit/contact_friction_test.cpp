@@ -61,6 +61,24 @@ TEST(ContactFriction, ZeroFrictionOnEitherSideKeepsTheSpeed) {
   EXPECT_NEAR(slide.distance, 5.0 * 3.0, 1e-6);
 }
 
+// A floor and a column of 10 unit boxes on it, all with mu = 0.5; the bottom box is
+// pushed sideways at `share` of what the column's weight lets friction hold.
+BodyId add_pushed_column(World& world, double share) {
+  const double mu = 0.5;
+  BodyDef floor = box_def({0.0, -1.0}, {100.0, 1.0}, Motion::Static);
+  floor.contact_friction = mu;
+  add_or_fail(world, floor);
+  BodyId bottom{};
+  for (int level = 0; level < 10; ++level) {
+    BodyDef box = box_def({0.0, 0.5 + level}, {0.5, 0.5});
+    box.contact_friction = mu;
+    if (level == 0) box.acceleration = {share * mu * 10.0 * kGravity, 0.0};
+    const BodyId id = add_or_fail(world, box);
+    if (level == 0) bottom = id;
+  }
+  return bottom;
+}
+
 // Coulomb's law under load: the friction that holds a body is bounded by the whole
 // normal force on it, including the weight of what rests on it. A unit box on the
 // floor carries a column of 9 more (all mu = 0.5) and is pushed sideways at
@@ -73,19 +91,8 @@ TEST(ContactFriction, ZeroFrictionOnEitherSideKeepsTheSpeed) {
 // from the step after the contacts are first solved, so the box slips in its first
 // steps (measured 0.033 m); from 0.1 s on, bound: less than 1 mm over 5 s.
 TEST(ContactFriction, LoadedBoxHoldsAPushThatItsOwnWeightCouldNot) {
-  const double mu = 0.5;
   World world;
-  BodyDef floor = box_def({0.0, -1.0}, {100.0, 1.0}, Motion::Static);
-  floor.contact_friction = mu;
-  add_or_fail(world, floor);
-  BodyId bottom{};
-  for (int level = 0; level < 10; ++level) {
-    BodyDef box = box_def({0.0, 0.5 + level}, {0.5, 0.5});
-    box.contact_friction = mu;
-    if (level == 0) box.acceleration = {0.5 * mu * 10.0 * kGravity, 0.0};
-    const BodyId id = add_or_fail(world, box);
-    if (level == 0) bottom = id;
-  }
+  const BodyId bottom = add_pushed_column(world, 0.5);
   for (int step = 0; step < 6; ++step) world.step(kDt);
   const double after_start = world.body(bottom)->position.x;
   EXPECT_LT(after_start, 0.05);
@@ -96,19 +103,8 @@ TEST(ContactFriction, LoadedBoxHoldsAPushThatItsOwnWeightCouldNot) {
 // And the load holds no more than Coulomb allows: pushed at 1.2 times what the
 // column's weight holds (58.9 m/s^2), the bottom box slides out from under it.
 TEST(ContactFriction, LoadedBoxSlidesUnderAPushBeyondItsLoad) {
-  const double mu = 0.5;
   World world;
-  BodyDef floor = box_def({0.0, -1.0}, {100.0, 1.0}, Motion::Static);
-  floor.contact_friction = mu;
-  add_or_fail(world, floor);
-  BodyId bottom{};
-  for (int level = 0; level < 10; ++level) {
-    BodyDef box = box_def({0.0, 0.5 + level}, {0.5, 0.5});
-    box.contact_friction = mu;
-    if (level == 0) box.acceleration = {1.2 * mu * 10.0 * kGravity, 0.0};
-    const BodyId id = add_or_fail(world, box);
-    if (level == 0) bottom = id;
-  }
+  const BodyId bottom = add_pushed_column(world, 1.2);
   for (int step = 0; step < 60; ++step) world.step(kDt);
   EXPECT_GT(world.body(bottom)->position.x, 0.5);
 }
