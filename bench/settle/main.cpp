@@ -10,11 +10,11 @@
 // (or "never") and the worst overlap at the end.
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cstdint>
 #include <cstdio>
 #include <vector>
 
 #include "physics/world.h"
+#include "rain.h"
 
 namespace {
 
@@ -23,19 +23,7 @@ using phys::BodyState;
 using phys::Motion;
 using phys::Shape;
 using phys::Vec2;
-
-// Knuth's MMIX linear congruential generator, seeded as the tests' Rain.
-class Rain {
- public:
-  double uniform(double lo, double hi) {
-    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double unit = static_cast<double>(state_ >> 11) * 0x1.0p-53;
-    return lo + (hi - lo) * unit;
-  }
-
- private:
-  std::uint64_t state_ = 12345;
-};
+using phys::testing::Rain;
 
 struct Options {
   double width = 20.0;

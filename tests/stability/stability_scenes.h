@@ -6,22 +6,9 @@
 #include <vector>
 
 #include "physics_test_support.h"
+#include "rain.h"
 
 namespace phys::testing {
-
-// A fixed linear congruential generator (Knuth's MMIX constants) for rained scenes:
-// the same rain on every platform and build.
-class Rain {
- public:
-  double uniform(double lo, double hi) {
-    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double unit = static_cast<double>(state_ >> 11) * 0x1.0p-53;
-    return lo + (hi - lo) * unit;
-  }
-
- private:
-  std::uint64_t state_ = 12345;
-};
 
 // A static floor whose top is the line y = offset.y, 400 m wide.
 inline BodyId add_floor(World& world, Vec2 offset) {

@@ -231,8 +231,8 @@ class StepRunner {
     if (gravity_on_) ++w_.counters.gravity_passes;
   }
 
-  // The acceleration a body moves by: gravity less what its contacts held up last
-  // sub-step (see Body::held).
+  // The acceleration a body moves by: gravity and its own, less what its contacts
+  // held back last sub-step (see Body::held).
   Vec2 moving_acceleration(const Body& b) const {
     return gravity_on_ ? b.acceleration + s_.gravity + b.held : b.acceleration;
   }
