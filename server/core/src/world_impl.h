@@ -170,6 +170,7 @@ class WorldImpl {
   std::vector<Vec2> solver_velocity_;            // the restitution phase's velocities, by position
   std::vector<Vec2> step_displacement_;          // free-motion displacement this sub-step
   std::vector<std::uint8_t> contact_near_miss_;  // per candidate, when marked: a near miss
+  std::vector<double> contact_gap_;              // per candidate, when a near miss: its gap
   std::vector<Vec2> velocity_before_contacts_;   // per position, when support is held
   std::vector<std::uint8_t> in_contact_;         // per position
   std::vector<double> support_impulse_;          // per position: what its supports pushed up
