@@ -93,7 +93,7 @@ class StepRunner {
     w_.contact_near_miss_.resize(w_.candidates_.size());
     w_.contact_gap_.resize(w_.candidates_.size());
     move(1);
-    if (any_active_box_) collide_boxes_on(1);
+    if (any_active_box_) collide_boxes_on<1>();
     move(0);
     collide_on_x();
     {
@@ -488,10 +488,13 @@ class StepRunner {
   }
 
   // Per-axis resolution of box pairs: the lecture's penetration on the axis, pushed
-  // apart by penetration plus slop, up if above, down if below.
-  void collide_boxes_on(int axis) {
+  // apart by penetration plus slop, up if above, down if below. The axis is a
+  // template argument: picking a component by a run-time axis cost a branch per
+  // use, and the registers those branches tied up spilled the pair loop's state.
+  template <int axis>
+  void collide_boxes_on() {
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
-    const int other = 1 - axis;
+    constexpr int other = 1 - axis;
     const Vec2 unit = axis == 0 ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
     std::uint64_t tests = 0;  // counted here, added once: the loop keeps it in a register
     resolve_passes([&](const Candidate& cand, Body& a, Body& b) {
@@ -530,7 +533,7 @@ class StepRunner {
   // The X phase: boxes on X, then every pair with a circle along its normal (a
   // circle's normal needs no axis split).
   void collide_on_x() {
-    if (any_active_box_) collide_boxes_on(0);
+    if (any_active_box_) collide_boxes_on<0>();
     if (!any_active_circle_ && !(any_active_box_ && w_.fixed_circles_ > 0)) return;
     PhaseTimer t(s_.profile, w_.profile.narrowphase);
     std::uint64_t circle_tests = 0;
