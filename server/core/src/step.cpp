@@ -582,10 +582,15 @@ class StepRunner {
   // the inverse-mass weights of the pair; the carrier's becomes zero.
   void carry(bool fixed, std::uint32_t lower_pos, std::uint32_t upper_pos, double up, double& wa,
              double& wb) {
-    auto& supported = w_.supported_;
+    carry(w_.supported_.data(), shock_, fixed, lower_pos, upper_pos, up, wa, wb);
+  }
+  // The same on a plain array: a loop that passes it keeps it in a register, where
+  // the vector's pointer would be reloaded after every byte store (which may alias).
+  static void carry(std::uint8_t* supported, bool shock, bool fixed, std::uint32_t lower_pos,
+                    std::uint32_t upper_pos, double up, double& wa, double& wb) {
     if (fixed) {
       if (up < -kSupportCosine) supported[lower_pos] = 1;
-    } else if (!shock_) {
+    } else if (!shock) {
       return;
     } else if (up > kSupportCosine && supported[lower_pos]) {
       wa = 0.0;
@@ -729,64 +734,80 @@ class StepRunner {
     if (contact_count_ == 0) return;
     ++w_.counters.restitution_passes;
     const std::span<ContactRecord> contacts(w_.contacts_.data(), contact_count_);
-    Vec2 unused{};  // what vb names for a fixed body; never read
+    Vec2* const solver = velocity.data();
+    const bool shock = shock_;
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       w_.supported_.assign(w_.active_.size(), 0);
+      std::uint8_t* const supported = w_.supported_.data();
       bool changed = false;
       for (ContactRecord& k : contacts) {
-        Vec2& va = velocity[k.lower_pos];
-        Vec2& vb = k.fixed ? unused : velocity[k.upper_pos];
-        const Vec2 n = k.normal;
-        double wa = k.inv_mass_lower;
-        double wb = k.inv_mass_upper;
-        carry(k.fixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
-        double closing = dot((k.fixed ? Vec2{} : vb) - va, n);
-        // An immovable supporter can stop the bodies it carries but never lift them:
-        // its own motion away from them counts as zero. Otherwise a supported body
-        // moving up hands its velocity to every body above it, all the way up a pile.
-        if (wa == 0.0 && !k.fixed) closing += std::max(dot(va, n), 0.0);
-        if (wb == 0.0 && !k.fixed) closing -= std::min(dot(vb, n), 0.0);
-        if (wa + wb <= 0.0) continue;
-        // Sequential impulses: the impulse accumulated on a contact may shrink again
-        // but never pull (stay >= 0), so iterations converge to a velocity that
-        // neither approaches nor separates from resting contacts.
-        double& total = k.impulse;
-        if (iteration == 0 && k.warm > 0.0) {
-          // Warm start: begin from last step's impulse on this pair, so resting
-          // contacts converge over steps instead of within one.
-          total = k.warm;
-          va -= n * (total * wa);
-          if (!k.fixed) vb += n * (total * wb);
-          changed = true;
-          if (k.mu > 0.0) {
-            // Friction warm-starts too, within the cone of the warm normal impulse
-            // (Box2D's warm start of the tangent impulse): a pile holds its
-            // sideways loads through chains of friction that a few iterations from
-            // zero would not rebuild every step.
-            const Vec2 t{-n.y, n.x};
-            const double limit = k.mu * total;
-            k.tangent_impulse = std::clamp(k.warm_tangent, -limit, limit);
-            va -= t * (k.tangent_impulse * wa);
-            if (!k.fixed) vb += t * (k.tangent_impulse * wb);
-            apply_contact_friction(k, va, vb, wa, wb);
-          }
-          continue;
+        if (k.fixed) {
+          solve_contact<true>(k, solver, supported, shock, iteration == 0, changed);
+        } else {
+          solve_contact<false>(k, solver, supported, shock, iteration == 0, changed);
         }
-        const double wanted = std::max(total + (k.target - closing) / (wa + wb), 0.0);
-        const double impulse = wanted - total;
-        if (impulse != 0.0) {
-          total = wanted;
-          va -= n * (impulse * wa);
-          if (!k.fixed) vb += n * (impulse * wb);
-          changed = changed || std::fabs(impulse) > 1.0e-12;
-        }
-        if (k.mu > 0.0) changed = apply_contact_friction(k, va, vb, wa, wb) || changed;
       }
       if (!changed && iteration > 0) break;
     }
     for (std::uint32_t p = 0; p < active; ++p) body(w_.active_[p]).velocity = velocity[p];
     if (s_.warm_starting) remember_impulses();
     if (shock_ && any_contact_friction_) update_loads(contacts);
+  }
+
+  // One contact in one iteration of the restitution phase, built apart for contacts
+  // with a fixed body (no velocity of its own) and between two awake bodies, so
+  // that neither carries the other's tests.
+  template <bool kFixed>
+  static void solve_contact(ContactRecord& k, Vec2* solver, std::uint8_t* supported, bool shock,
+                            bool first_iteration, bool& changed) {
+    Vec2 fixed_velocity{};  // what vb names for a fixed body; never read
+    Vec2& va = solver[k.lower_pos];
+    Vec2& vb = kFixed ? fixed_velocity : solver[k.upper_pos];
+    const Vec2 n = k.normal;
+    double wa = k.inv_mass_lower;
+    double wb = k.inv_mass_upper;
+    carry(supported, shock, kFixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
+    double closing = dot((kFixed ? Vec2{} : vb) - va, n);
+    // An immovable supporter can stop the bodies it carries but never lift them:
+    // its own motion away from them counts as zero. Otherwise a supported body
+    // moving up hands its velocity to every body above it, all the way up a pile.
+    if (wa == 0.0 && !kFixed) closing += std::max(dot(va, n), 0.0);
+    if (wb == 0.0 && !kFixed) closing -= std::min(dot(vb, n), 0.0);
+    if (wa + wb <= 0.0) return;
+    // Sequential impulses: the impulse accumulated on a contact may shrink again
+    // but never pull (stay >= 0), so iterations converge to a velocity that
+    // neither approaches nor separates from resting contacts.
+    double& total = k.impulse;
+    if (first_iteration && k.warm > 0.0) {
+      // Warm start: begin from last step's impulse on this pair, so resting
+      // contacts converge over steps instead of within one.
+      total = k.warm;
+      va -= n * (total * wa);
+      if (!kFixed) vb += n * (total * wb);
+      changed = true;
+      if (k.mu > 0.0) {
+        // Friction warm-starts too, within the cone of the warm normal impulse
+        // (Box2D's warm start of the tangent impulse): a pile holds its
+        // sideways loads through chains of friction that a few iterations from
+        // zero would not rebuild every step.
+        const Vec2 t{-n.y, n.x};
+        const double limit = k.mu * total;
+        k.tangent_impulse = std::clamp(k.warm_tangent, -limit, limit);
+        va -= t * (k.tangent_impulse * wa);
+        if (!kFixed) vb += t * (k.tangent_impulse * wb);
+        apply_contact_friction<kFixed>(k, va, vb, wa, wb);
+      }
+      return;
+    }
+    const double wanted = std::max(total + (k.target - closing) / (wa + wb), 0.0);
+    const double impulse = wanted - total;
+    if (impulse != 0.0) {
+      total = wanted;
+      va -= n * (impulse * wa);
+      if (!kFixed) vb += n * (impulse * wb);
+      changed = changed || std::fabs(impulse) > 1.0e-12;
+    }
+    if (k.mu > 0.0) changed = apply_contact_friction<kFixed>(k, va, vb, wa, wb) || changed;
   }
 
   // One marked candidate as a contact record (targets from the velocities before
@@ -830,10 +851,11 @@ class StepRunner {
 
   // Coulomb friction: the tangential impulse accumulated on a contact stays within
   // mu times its normal impulse (a contact that pushes nothing holds nothing).
-  bool apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa, double wb) {
+  template <bool kFixed>
+  static bool apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa, double wb) {
     const Vec2 n = k.normal;
     const Vec2 t{-n.y, n.x};
-    const double sliding = dot((k.fixed ? Vec2{} : vb) - va, t);
+    const double sliding = dot((kFixed ? Vec2{} : vb) - va, t);
     const double limit = k.mu * k.impulse;
     double& total = k.tangent_impulse;
     const double wanted = std::clamp(total - sliding / (wa + wb), -limit, limit);
@@ -841,7 +863,7 @@ class StepRunner {
     if (impulse == 0.0) return false;
     total = wanted;
     va -= t * (impulse * wa);
-    if (!k.fixed) vb += t * (impulse * wb);
+    if (!kFixed) vb += t * (impulse * wb);
     return std::fabs(impulse) > 1.0e-12;
   }
 
