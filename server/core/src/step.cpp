@@ -110,6 +110,14 @@ class StepRunner {
 
  private:
   Body& body(std::uint32_t slot) { return w_.bodies[slot]; }
+  // The loops over the awake bodies in processing order read them where their
+  // slots are: in a pile that has flowed, all over memory, where the hardware's
+  // prefetcher cannot follow. Each asks for the body kPrefetchAhead places on.
+  void prefetch_ahead(std::size_t p) const {
+    if (p + kPrefetchAhead < w_.active_.size()) {
+      __builtin_prefetch(&w_.bodies[w_.active_[p + kPrefetchAhead]]);
+    }
+  }
   // Awake bodies are processed from the lowest (along gravity) up, so that a body's
   // supports are resolved before it. The order persists between steps and is
   // nearly sorted, so insertion sort is about O(N).
@@ -117,15 +125,18 @@ class StepRunner {
     auto& order = w_.active_;
     auto& keys = w_.sort_keys_;
     keys.resize(order.size());
-    for (std::size_t p = 0; p < order.size(); ++p) keys[p] = dot(body(order[p]).position, up_);
     std::size_t jumps = 0;  // neighbours in the order that are not neighbours in slots
     for (std::size_t p = 1; p < order.size(); ++p) {
       jumps += static_cast<std::size_t>(order[p] != order[p - 1] + 1);
     }
-    // Far from slot order (a pile that has flowed), the position passes read bodies
-    // all over memory and prefetch them; in slot order (a stack, a fresh scene) the
-    // hardware streams them on its own.
+    // Far from slot order (a pile that has flowed), the passes over the bodies read
+    // them all over memory and prefetch them; in slot order (a stack, a fresh scene)
+    // the hardware streams them on its own.
     scattered_ = 4 * jumps > order.size();
+    for (std::size_t p = 0; p < order.size(); ++p) {
+      if (scattered_) prefetch_ahead(p);
+      keys[p] = dot(body(order[p]).position, up_);
+    }
     // Heights within the slop are ties, broken by slot: a row of boxes at one height
     // keeps its order although rounding moves them by 1e-16 (and the candidate pairs,
     // grouped by position in this order, can then be reused).
@@ -162,6 +173,17 @@ class StepRunner {
   // Friction, acceleration and gravity: the free motion of each awake body over the
   // sub-step, per axis. The moves below apply it.
   void integrate() {
+    if (scattered_) {
+      integrate<true>();
+    } else {
+      integrate<false>();
+    }
+  }
+
+  // In two builds, as resolve_passes: with prefetching for bodies scattered in
+  // memory, and without it, so that a stack's loop carries no trace of it.
+  template <bool kPrefetch>
+  void integrate() {
     const std::size_t n = w_.active_.size();
     w_.step_velocity_.resize(n);
     w_.step_displacement_.resize(n);
@@ -175,6 +197,7 @@ class StepRunner {
     any_active_box_ = false;
     any_active_circle_ = false;
     for (std::size_t p = 0; p < n; ++p) {
+      if (kPrefetch) prefetch_ahead(p);
       Body& b = body(w_.active_[p]);
       b.correction = {};
       any_friction = any_friction || b.friction.x != 0.0 || b.friction.y != 0.0;
@@ -304,7 +327,17 @@ class StepRunner {
   // move is swept: it stops at the time of impact, bounces, and goes on.
   void move(int axis) {
     PhaseTimer t(s_.profile, w_.profile.integrate);
+    if (scattered_) {
+      move<true>(axis);
+    } else {
+      move<false>(axis);
+    }
+  }
+
+  template <bool kPrefetch>
+  void move(int axis) {
     for (std::uint32_t p = 0; p < w_.active_.size(); ++p) {
+      if (kPrefetch) prefetch_ahead(p);
       Body& b = body(w_.active_[p]);
       const double v_end = component(w_.step_velocity_[p], axis);
       const double x0 = component(b.position, axis);
@@ -720,6 +753,7 @@ class StepRunner {
       w_.in_contact_.assign(active, 0);
     }
     for (std::uint32_t p = 0; p < active; ++p) {
+      if (scattered_) prefetch_ahead(p);
       for (std::uint32_t c = w_.first_candidate_[p]; c < w_.first_candidate_[p + 1]; ++c) {
         if (w_.contact_of_candidate_[c] != kNone) gather_contact(c);
       }
@@ -749,7 +783,10 @@ class StepRunner {
       }
       if (!changed && iteration > 0) break;
     }
-    for (std::uint32_t p = 0; p < active; ++p) body(w_.active_[p]).velocity = velocity[p];
+    for (std::uint32_t p = 0; p < active; ++p) {
+      if (scattered_) prefetch_ahead(p);
+      body(w_.active_[p]).velocity = velocity[p];
+    }
     if (s_.warm_starting) remember_impulses();
     if (shock_ && any_contact_friction_) update_loads(contacts);
   }
@@ -911,7 +948,10 @@ class StepRunner {
         carried[k.upper_pos] -= k.impulse * k.up * factor(k.lower_pos);
       }
     }
-    for (std::uint32_t p = 0; p < n; ++p) body(w_.active_[p]).load = factor(p);
+    for (std::uint32_t p = 0; p < n; ++p) {
+      if (scattered_) prefetch_ahead(p);
+      body(w_.active_[p]).load = factor(p);
+    }
   }
 
   // What the contacts did to a body's velocity this sub-step, per axis, is how
@@ -924,6 +964,7 @@ class StepRunner {
   void update_held() {
     const double rest_squared = rest_speed_ * rest_speed_;
     for (std::size_t p = 0; p < w_.active_.size(); ++p) {
+      if (scattered_) prefetch_ahead(p);
       Body& b = body(w_.active_[p]);
       if (!w_.in_contact_[p] || dot(b.velocity, b.velocity) > rest_squared) {
         b.held = {};
