@@ -285,6 +285,7 @@ class StepRunner {
     auto& fat = w_.fat_boxes_;
     fat.resize(n);
     for (std::size_t p = 0; p < n; ++p) {
+      if (scattered_) prefetch_ahead(p);
       const Body& b = body(w_.active_[p]);
       const double extra = kFatMargin * std::min(b.half.x, b.half.y);
       const Aabb box = needed_box(b, w_.step_displacement_[p]);
