@@ -690,9 +690,9 @@ class StepRunner {
   // bodies falling together would have no contact inside it every other step: the
   // velocity pass would stop only its bottom, and the column would breathe by a
   // millimetre and 0.1 m/s a step forever, never asleep. Pairs closer than this
-  // margin are resting contacts for the velocity pass, like touching ones (Box2D
-  // v3's speculative contacts are the same idea; a gap within the slop is closed
-  // by no velocity).
+  // margin are resting contacts for the velocity pass, like touching ones (a gap
+  // within the slop is closed by no velocity). Circles get a wider margin on top
+  // (speculative_margin_).
   double near_miss_margin() const { return 2.0 * s_.slop; }
 
   // gap: how far apart the pair is (at most the margin it was found within).
