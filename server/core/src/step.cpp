@@ -391,11 +391,20 @@ class StepRunner {
       // Bounce at the time of impact and spend the rest of the step going back.
       const double v_hit = path.velocity(first_t);
       // A sleeping body struck by a swept move wakes: harder than a resting contact
-      // presses when struck from above, at all from the side or below.
+      // presses when struck from above, at all from the side, and from below
+      // however slowly when the mover is driven into it (its acceleration, with
+      // gravity and held support, points up at it) and would have gone in by more
+      // than the slop: it would rest on a moving body (see separate()). A body of a
+      // pile that rises a hair after a push is no such press; waking on it woke
+      // whole columns of a sleeping pile, again and again.
       if (body(hit_body).is_dynamic()) {
-        const bool from_above =
-            axis == 1 && dot(up_, Vec2{0.0, path.x0 > level ? 1.0 : -1.0}) > 0.0;
-        if (std::fabs(v_hit) > wake_speed(from_above)) {
+        Vec2 travel{};
+        component(travel, axis) = path.x0 > level ? -1.0 : 1.0;
+        const double rising = dot(up_, travel);
+        const bool driven = path.a * component(travel, axis) > 0.0;
+        const bool from_below =
+            gravity_on_ && rising > 0.0 && driven && std::fabs(path.x1 - level) > s_.slop;
+        if (from_below || std::fabs(v_hit) > wake_speed(rising < 0.0)) {
           w_.to_wake_.push_back(hit_body);
         }
       }
@@ -648,6 +657,12 @@ class StepRunner {
     wa /= sum;
     wb /= sum;
     record_contact(c, n);
+    // A sleeping body rests on sleeping ones only (update_sleep): one that an awake
+    // body presses into from below, however slowly, rests on that body now, and
+    // wakes (what rests on it wakes in turn as it moves).
+    if (cand.fixed && gravity_on_ && up > 0.0 && depth > s_.slop && b.is_dynamic()) {
+      w_.to_wake_.push_back(cand.upper);
+    }
     const double push = depth + s_.slop;
     if (depth == 0.0 && !(push > 0.0)) return false;
     a.position -= n * (push * wa);
@@ -1022,9 +1037,11 @@ class StepRunner {
   }
 
   // A sleeping body wakes when it is hit: harder than a resting contact presses
-  // (from above), or at all from the side or below.
+  // (from above), or at all from the side or below. From above means any contact
+  // on its upper side, a steep one too: a body resting there closes on it by up to
+  // the g*h it gained in the sub-step, which is no hit.
   void wake_if_hit(const Candidate& cand, const ContactRecord& contact, double closing) {
-    const bool resting_on_it = contact.up < -kSupportCosine;
+    const bool resting_on_it = contact.up < 0.0;
     if (-closing > wake_speed(resting_on_it)) w_.to_wake_.push_back(cand.upper);
   }
   double wake_speed(bool resting_on_it) const {
@@ -1057,9 +1074,8 @@ class StepRunner {
 
   // A body that has been still for sleep_time is ready to sleep. Bodies near each
   // other form an island (union-find over this sub-step's candidate pairs, static
-  // and sleeping bodies not linking), and an island sleeps only when all of it is
-  // ready: a pile falls asleep together, never from the bottom while it is still
-  // being loaded.
+  // and sleeping bodies not linking), and an island sleeps when all of it is ready,
+  // or from the bottom up as far as it is (sleep_from_the_bottom).
   void update_sleep() {
     for (std::uint32_t slot : w_.to_wake_) w_.wake(slot);
     w_.to_wake_.clear();
@@ -1102,14 +1118,69 @@ class StepRunner {
     for (std::uint32_t p = 0; p < n; ++p) {
       if (body(w_.active_[p]).still_time < s_.sleep_time) island_ready[root(p)] = 0;
     }
+    auto& asleep = w_.goes_to_sleep_;
+    asleep.resize(n);
+    for (std::uint32_t p = 0; p < n; ++p) asleep[p] = island_ready[root(p)];
+    sleep_from_the_bottom(asleep);
     for (std::uint32_t p = 0; p < n; ++p) {
-      if (!island_ready[root(p)]) continue;
+      if (!asleep[p]) continue;
       Body& b = body(w_.active_[p]);
       b.awake = false;
       b.velocity = {};
       b.held = {};
       b.load = 1.0;
       w_.lists_dirty_ = true;
+    }
+  }
+
+  // An island sleeps as a whole when all of it is ready; in one that is not, a
+  // ready body still sleeps when it rests only on what is asleep or static: it has
+  // a contact below it (one whose normal has any component along "up", a steep
+  // one of an arch too), and every body below it that it touches is asleep. Bodies
+  // come from the lowest up, so a still pile falls asleep from the floor up to
+  // where something still moves, in one pass; what rests on a moving body stays
+  // awake. A sleeping body is as immovable for what it carries as shock
+  // propagation already makes a supported one, so the bodies above see no change;
+  // without this, one avalanche anywhere in a pile of 16,000 kept all of it awake.
+  void sleep_from_the_bottom(std::vector<std::uint8_t>& asleep) {
+    const std::span<const ContactRecord> contacts(w_.contacts_.data(), contact_count_);
+    const std::size_t n = w_.active_.size();
+    auto& first = w_.first_support_;
+    auto& supporters = w_.supporters_;
+    auto& cursor = w_.support_cursor_;
+    // Each contact with a vertical component: the awake body on top (kNone when
+    // that is the fixed one, which needs no support) and the one under it.
+    struct Link {
+      std::uint32_t carried;
+      std::uint32_t supporter;  // kNone when static or sleeping
+    };
+    const auto link_of = [](const ContactRecord& k) {
+      if (k.up > 0.0) return Link{k.fixed ? kNone : k.upper_pos, k.lower_pos};
+      if (k.up < 0.0) return Link{k.lower_pos, k.fixed ? kNone : k.upper_pos};
+      return Link{kNone, kNone};
+    };
+    first.assign(n + 1, 0);
+    for (const ContactRecord& k : contacts) {
+      const Link link = link_of(k);
+      if (link.carried != kNone) ++first[link.carried + 1];
+    }
+    for (std::size_t p = 0; p < n; ++p) first[p + 1] += first[p];
+    supporters.resize(first[n]);
+    cursor.assign(first.begin(), first.end() - 1);
+    for (const ContactRecord& k : contacts) {
+      const Link link = link_of(k);
+      if (link.carried != kNone) supporters[cursor[link.carried]++] = link.supporter;
+    }
+    for (std::uint32_t p = 0; p < n; ++p) {
+      if (asleep[p] || first[p] == first[p + 1]) continue;
+      if (body(w_.active_[p]).still_time < s_.sleep_time) continue;
+      // A supporter later in the order (level with p, within the slop) is not judged
+      // yet: p waits for the next sub-step.
+      const auto on_sleeper = [&](std::uint32_t q) { return q == kNone || asleep[q] != 0; };
+      if (std::all_of(supporters.begin() + first[p], supporters.begin() + first[p + 1],
+                      on_sleeper)) {
+        asleep[p] = 1;
+      }
     }
   }
 

@@ -181,6 +181,10 @@ class WorldImpl {
   std::vector<double> sort_keys_;
   std::vector<std::uint8_t> sleep_ready_;
   std::vector<std::uint32_t> island_parent_;
+  std::vector<std::uint8_t> goes_to_sleep_;    // per position, this sub-step's verdict
+  std::vector<std::uint32_t> first_support_;   // per position: CSR offsets into supporters_
+  std::vector<std::uint32_t> supporters_;      // positions of what each body rests on
+  std::vector<std::uint32_t> support_cursor_;  // filling supporters_
 };
 
 }  // namespace phys
