@@ -123,7 +123,7 @@ TEST(StateHash, ReadingItChangesNothing) {
 
 // The golden hash of build_scene + apply_inputs after 1000 steps at 60 Hz with
 // the default WorldSettings. Updated 2026-11-22 when piles began to fall asleep
-// from the bottom up (docs/PHYSICS.md, "Sleep from the bottom up"); the Release
+// from the bottom up (docs/PHYSICS.md, "Sleep"); the Release
 // and the Debug build both give it. A change here means results changed:
 // if that is intended (a new formula, a new default), update the constant in the
 // same change and say why.

@@ -1,9 +1,11 @@
-// Sleep from the bottom up (docs/PHYSICS.md, "Sleep from the bottom up"): a still
+// Sleep from the bottom up (docs/PHYSICS.md, "Sleep"): a still
 // body whose every support is asleep or static sleeps although something above it
 // in its island still moves; and a sleeping body an awake one presses into from
 // below wakes, however slowly it is pressed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
