@@ -149,16 +149,26 @@ void WorldImpl::wake(std::uint32_t index) {
 }
 
 void WorldImpl::rebuild_lists() {
-  // The pool holds the entries of the awake bodies as the last restitution phase
-  // wrote them; the list is about to change, so each keeps its own in its slot.
+  // The bodies that stay awake keep their places in the processing order: the step
+  // keeps it sorted by height, nearly unchanged from one step to the next, and a
+  // list rebuilt in slot order had to be sorted from scratch every step in which
+  // any body of a settling pile fell asleep or woke. Their warm-start entries stay
+  // in the pool too; only a body that leaves the list keeps its own in its slot.
   // (A slot reused by add_body since is already kWarmInSlot and empty.)
-  for (std::uint32_t slot : active_) {
-    if (warm_first[slot] == kWarmInSlot) continue;
-    std::copy_n(warm_pool.begin() + warm_first[slot], warm_count[slot], warm[slot].entries);
-    warm_first[slot] = kWarmInSlot;
-  }
-  warm_pool.clear();
+  previous_active_.swap(active_);
   active_.clear();
+  listed_.assign(bodies.size(), 0);
+  for (std::uint32_t slot : previous_active_) {
+    const Body& b = bodies[slot];
+    if (b.alive && b.is_dynamic() && b.awake) {
+      active_.push_back(slot);
+      listed_[slot] = 1;
+    } else if (warm_first[slot] != kWarmInSlot) {
+      std::copy_n(warm_pool.begin() + warm_first[slot], warm_count[slot], warm[slot].entries);
+      warm_first[slot] = kWarmInSlot;
+    }
+  }
+  const std::size_t kept = active_.size();
   fixed_.clear();
   fixed_boxes_.clear();
   fixed_circles_ = 0;
@@ -167,7 +177,7 @@ void WorldImpl::rebuild_lists() {
     const Body& b = bodies[i];
     if (!b.alive) continue;
     if (b.is_dynamic() && b.awake) {
-      active_.push_back(i);
+      if (!listed_[i]) active_.push_back(i);  // woken or added: joins at the end
     } else {
       fixed_.push_back(i);
       fixed_boxes_.push_back(b.bounds());
@@ -175,6 +185,7 @@ void WorldImpl::rebuild_lists() {
       fixed_sleeping_ += b.is_dynamic() ? 1 : 0;
     }
   }
+  joined_ = kept == 0 ? 0 : active_.size() - kept;
   fixed_grid_.build(fixed_boxes_);
   lists_dirty_ = false;
   candidates_valid_ = false;

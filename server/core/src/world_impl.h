@@ -3,6 +3,7 @@
 // generation); the step works on dense lists of slot indices rebuilt when bodies
 // are added, removed, fall asleep or wake.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "physics/broadphase.h"
@@ -87,6 +88,9 @@ struct ContactRecord {
   double up;    // dot(normal, up): the support test of shock propagation
   double inv_mass_lower;
   double inv_mass_upper;   // 0 when fixed
+  double mass_lower;       // 1 / inv_mass_lower
+  double mass_upper;       // 1 / inv_mass_upper (unused when fixed)
+  double mass_pair;        // 1 / (inv_mass_lower + inv_mass_upper)
   double target;           // the closing velocity the contact should end with
   double warm;             // last sub-step's impulse on this pair (warm start)
   double warm_tangent;     // and its friction impulse
@@ -148,7 +152,13 @@ class WorldImpl {
   // Dense lists, rebuilt when `lists_dirty_`.
   bool lists_dirty_ = true;
   std::vector<std::uint32_t> active_;  // awake dynamic bodies, in processing order
-  std::vector<std::uint32_t> fixed_;   // static and sleeping bodies, ascending index
+  // How many bodies at the end of active_ joined it at the last rebuild (woken or
+  // added, in slot order) and are still to be merged into the order by height; 0
+  // when the whole list is new (its order then is slot order).
+  std::size_t joined_ = 0;
+  std::vector<std::uint32_t> previous_active_;  // rebuild_lists' scratch
+  std::vector<std::uint8_t> listed_;            // per slot: kept in active_ (scratch)
+  std::vector<std::uint32_t> fixed_;            // static and sleeping bodies, ascending index
   UniformGrid fixed_grid_;
   UniformGrid active_grid_;
   std::vector<Aabb> fixed_boxes_;
@@ -179,12 +189,18 @@ class WorldImpl {
   std::vector<std::uint32_t> to_wake_;
   std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
   std::vector<double> sort_keys_;
+  std::vector<std::pair<double, std::uint32_t>> keyed_order_;  // merging joined bodies
   std::vector<std::uint8_t> sleep_ready_;
   std::vector<std::uint32_t> island_parent_;
   std::vector<std::uint8_t> goes_to_sleep_;    // per position, this sub-step's verdict
   std::vector<std::uint32_t> first_support_;   // per position: CSR offsets into supporters_
   std::vector<std::uint32_t> supporters_;      // positions of what each body rests on
   std::vector<std::uint32_t> support_cursor_;  // filling supporters_
+  std::vector<std::uint8_t> held_state_;       // sleep_held_groups: per position
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> holds_;  // (held, holder) positions
+  std::vector<std::uint32_t> held_start_;  // per holder: CSR offsets into held_list_
+  std::vector<std::uint32_t> held_list_;   // the bodies each holds
+  std::vector<std::uint32_t> held_work_;   // the walks' stack
 };
 
 }  // namespace phys
