@@ -128,8 +128,8 @@ TEST_P(DeepPiles, KeepTheirOverlapWithinTheBound) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Rained, DeepPiles,
-                         ::testing::Values(DeepPile{0.5, 0.01, 0.00107},
-                                           DeepPile{0.0, 0.01, 0.00909}),
+                         ::testing::Values(DeepPile{0.5, 0.01, 0.0054},
+                                           DeepPile{0.0, 0.01, 0.00412}),
                          [](const auto& param_info) {
                            return param_info.param.mu == 0.0 ? std::string("frictionless")
                                                              : std::string("mu_0_5");
@@ -140,8 +140,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(SmallPile{3.6, 30, 0.5, 5.0, 1.63}, SmallPile{6.0, 30, 0.5, 5.0, 1.13},
                       SmallPile{10.0, 30, 0.5, 5.0, 1.12}, SmallPile{6.0, 100, 0.5, 10.0, 2.22},
                       SmallPile{10.0, 100, 0.5, 10.0, 1.65}, SmallPile{20.0, 300, 0.5, 15.0, 2.63},
-                      SmallPile{20.0, 1200, 0.5, 15.0, 5.52},
-                      SmallPile{20.0, 300, 0.0, 25.0, 12.20}),
+                      SmallPile{20.0, 1200, 0.5, 15.0, 4.47},
+                      SmallPile{20.0, 300, 0.0, 25.0, 8.83}),
     [](const auto& param_info) {
       const SmallPile& p = param_info.param;
       return "width" + std::to_string(static_cast<int>(p.width * 10.0)) + "dm_" +
