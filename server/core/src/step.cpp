@@ -846,8 +846,7 @@ class StepRunner {
     double wa = k.inv_mass_lower;
     double wb = k.inv_mass_upper;
     carry(supported, shock, kFixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
-    // The pair's effective mass, 1 / (wa + wb), from the gathered masses: a division
-    // here sat on the chain from one contact's impulse to the next.
+    // The pair's effective mass, once for the normal and the friction impulse.
     const double mass = 1.0 / (wa + wb);
     double closing = dot((kFixed ? Vec2{} : vb) - va, n);
     // An immovable supporter can stop the bodies it carries but never lift them:
@@ -907,9 +906,6 @@ class StepRunner {
     k.up = dot(k.normal, up_);
     k.inv_mass_lower = a.inv_mass;
     k.inv_mass_upper = cand.fixed ? 0.0 : b.inv_mass;
-    k.mass_lower = a.mass;
-    k.mass_upper = cand.fixed ? 0.0 : b.mass;
-    k.mass_pair = cand.fixed ? a.mass : 1.0 / (a.inv_mass + b.inv_mass);
     const double closing = dot(b.velocity - a.velocity, k.normal);
     const double e = mix_restitution(a.restitution, b.restitution);
     k.target = closing < 0.0 ? -effective_restitution(-closing, e, rest_speed_) * closing : 0.0;

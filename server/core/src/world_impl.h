@@ -88,9 +88,6 @@ struct ContactRecord {
   double up;    // dot(normal, up): the support test of shock propagation
   double inv_mass_lower;
   double inv_mass_upper;   // 0 when fixed
-  double mass_lower;       // 1 / inv_mass_lower
-  double mass_upper;       // 1 / inv_mass_upper (unused when fixed)
-  double mass_pair;        // 1 / (inv_mass_lower + inv_mass_upper)
   double target;           // the closing velocity the contact should end with
   double warm;             // last sub-step's impulse on this pair (warm start)
   double warm_tangent;     // and its friction impulse
