@@ -1,6 +1,7 @@
 // Sleep from the bottom up (docs/PHYSICS.md, "Sleep"): a still
 // body whose every support is asleep or static sleeps although something above it
-// in its island still moves; and a sleeping body an awake one presses into from
+// in its island still moves; so does a still group held up by friction with no
+// contact below (held groups); and a sleeping body an awake one presses into from
 // below wakes, however slowly it is pressed.
 #include <gtest/gtest.h>
 
@@ -105,6 +106,51 @@ TEST(PartialSleep, ABoxPressedFromBelowWakes) {
   EXPECT_TRUE(woke_at_once);
   EXPECT_GT(risen, 0.5) << "m";
   EXPECT_LT(worst_overlap, 1e-3) << "m";
+}
+
+// Held groups (docs/PHYSICS.md, "Sleep"): a box with no contact below it, pressed
+// against a static wall by its own acceleration (1.5 g) and held up by friction
+// (mu 1 on both), carries a light box with a slider on top that never stops (as in
+// ColumnSleepsUnderABodyThatKeepsMoving). The island is never still as a whole, and
+// the bottom-up rule needs a contact below, so before held groups the pressed box
+// and the box on it stayed awake for ever (creeping down the wall at 1.4 cm/s).
+// Bound: from 2 s on, the pressed box and the box on it are asleep at every step
+// and the slider awake; the pressed box moves less than 1e-3 m in that time.
+TEST(PartialSleep, ABoxHeldUpByFrictionSleepsWithWhatItCarries) {
+  World world;
+  BodyDef wall = box_def({-1.0, 5.0}, {0.5, 5.0}, Motion::Static);  // right face at x = -0.5
+  wall.contact_friction = 1.0;
+  add_or_fail(world, wall);
+  BodyDef pressed_def = box_def({0.0, 3.0}, {0.5, 0.5});
+  pressed_def.contact_friction = 1.0;
+  pressed_def.acceleration = {-1.5 * 9.81, 0.0};
+  const BodyId pressed = add_or_fail(world, pressed_def);
+  BodyDef carried_def = box_def({0.0, 4.0}, {0.5, 0.5});
+  carried_def.mass = 0.1;
+  carried_def.contact_friction = 1.0;
+  const BodyId carried = add_or_fail(world, carried_def);
+  BodyDef slider_def = box_def({0.0, 5.0}, {0.5, 0.5});
+  slider_def.mass = 0.1;  // frictionless on the carried box: it slides, never drags
+  const BodyId slider = add_or_fail(world, slider_def);
+  int held_awake_steps = 0;
+  int slider_asleep_steps = 0;
+  double start_height = 0.0;
+  for (int step = 1; step <= 600; ++step) {
+    const bool forward = (step / 60) % 2 == 0;
+    const double fall = world.body(slider)->velocity.y;
+    ASSERT_TRUE(world.set_velocity(slider, {forward ? 0.3 : -0.3, fall}));
+    world.step(kDt);
+    if (step == 120) start_height = world.body(pressed)->position.y;
+    if (step < 120) continue;
+    held_awake_steps += world.body(pressed)->awake ? 1 : 0;
+    held_awake_steps += world.body(carried)->awake ? 1 : 0;
+    slider_asleep_steps += world.body(slider)->awake ? 0 : 1;
+  }
+  const double moved = std::fabs(world.body(pressed)->position.y - start_height);
+  std::printf("held up by friction: pressed box moved %.3g m from 2 s to 10 s\n", moved);
+  EXPECT_EQ(held_awake_steps, 0) << "body-steps awake from 2 s on";
+  EXPECT_EQ(slider_asleep_steps, 0);
+  EXPECT_LT(moved, 1e-3) << "m";
 }
 
 }  // namespace
