@@ -3,6 +3,8 @@
 // the per-axis penetration, and circle-box through the closest point.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "physics/formulas.h"
 
 namespace phys {
@@ -45,6 +47,31 @@ TEST(CollideCircles, SameCentreStillGivesAUnitNormal) {
   EXPECT_TRUE(c.colliding);
   EXPECT_DOUBLE_EQ(c.penetration, 1.5);
   EXPECT_DOUBLE_EQ(length(c.normal), 1.0);
+}
+
+TEST(CollideCircles, TheEarlyOutAgreesWithTheSquareRootAtTheBoundary) {
+  // collide_circles skips the square root for pairs whose squared distance is
+  // well past the reach. Pairs within a few ulps of touching, on both sides, at
+  // scales from 1e-150 to 1e150, must get exactly the answer of the plain formula
+  // (distance = sqrt(d.d), colliding when distance <= r1 + r2).
+  for (double scale : {1.0e-150, 1.0e-9, 1.0, 0.75, 3.0e4, 1.0e150}) {
+    for (double angle = 0.0; angle < 6.3; angle += 0.37) {
+      const double r1 = 0.5 * scale;
+      const double r2 = 0.3 * scale;
+      const Vec2 c1{1.0 * scale, -2.0 * scale};
+      double distance = r1 + r2;
+      for (int ulp = 0; ulp < 40; ++ulp) distance = std::nextafter(distance, 0.0);
+      for (int step = 0; step < 80; ++step, distance = std::nextafter(distance, 1.0e300)) {
+        const Vec2 c2 = c1 + Vec2{std::cos(angle), std::sin(angle)} * distance;
+        const double plain = length(c2 - c1);
+        const Contact c = collide_circles(c1, r1, c2, r2);
+        ASSERT_EQ(c.colliding, plain <= r1 + r2) << "scale " << scale << " angle " << angle;
+        if (c.colliding) {
+          EXPECT_EQ(c.penetration, std::fabs(plain - r1 - r2));
+        }
+      }
+    }
+  }
 }
 
 // ---- box-box: the four separating conditions ----

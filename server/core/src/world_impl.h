@@ -29,7 +29,11 @@ struct WarmImpulses {
   WarmEntry entries[kWarmSlots]{};
 };
 
-struct Body {
+// Aligned to a cache line, so that the hot fields below are one line and the warm
+// ones the next: unaligned, a body's first 64 bytes straddled two lines, and every
+// contact touched three of a body's lines instead of two (about 4% of a step in a
+// flowing pile of 16,000 circles, whose bodies sit all over memory).
+struct alignas(64) Body {
   // Hot: read by every pass over the contacts (the first cache line and a half).
   Vec2 position{};
   Vec2 half{};  // half extents of the bounding box (a circle's: radius, radius)
@@ -46,6 +50,11 @@ struct Body {
   // the hot fields, so that a contact does not touch a body's cold line).
   double restitution = 0.0;
   double contact_friction = 0.0;
+  // How many times its own weight its supports carried in the last sub-step (1 for
+  // a body carrying nothing): the weight of what rests on it, which shock
+  // propagation keeps out of its contact impulses, put back into its friction.
+  // Read with the materials, by every contact with friction.
+  double load = 1.0;
   // Cold: read once a step or less.
   Vec2 acceleration{};
   double mass = 0.0;
@@ -56,10 +65,6 @@ struct Body {
   // a resting body does not sink into its supports and get pushed back out every
   // step, nor creep along them when friction holds a push.
   Vec2 held{};
-  // How many times its own weight its supports carried in the last sub-step (1 for
-  // a body carrying nothing): the weight of what rests on it, which shock
-  // propagation keeps out of its contact impulses, put back into its friction.
-  double load = 1.0;
   Vec2 still_anchor{};
 
   Aabb bounds() const { return {position - half, position + half}; }
