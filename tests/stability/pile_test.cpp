@@ -137,11 +137,18 @@ class SettlingPile : public ::testing::Test {
 TEST_F(SettlingPile, WithFrictionFallsAsleepWithoutOverlapOrEnergyGrowth) { settle(0.5); }
 
 // Frictionless: DISABLED because the core does not meet it yet (issue 4 stays
-// open). A frictionless pile flows like a liquid for longer: measured with sleep
-// from the bottom up, 7,561 circles still awake at 30 s with an overlap of 0.029 m,
-// KE 533 J (growing on 326 of the next 600 steps). How long it flows, measured with
-// build/bench/physics-settle --width 100 --circles 16000 --mu 0 --seconds 120 (the
-// same pile but for its random jitter): FROZEN_SETTLE_FIGURES.
+// open). Measured on the current core (Release): 6,816 circles still awake at 30 s,
+// overlap 0.019 m, KE 119 J, then KE growing on 334 of the next 600 steps. The pile
+// has not settled at 30 s. Without friction, the equal circles pack in a hexagonal
+// lattice, and the holes left in it rise like bubbles: the circle above a hole falls
+// into it, leaving a hole above itself.
+//   - Measured with a scratch probe: 2,029 circles moved by one lattice step
+//     (0.5 to 1.5 m, mostly down) between 20 and 30 s, and 622 by two.
+//   - The deepest overlaps at 30 s are between side-by-side awake circles on the
+//     path of such a hole.
+// In the same pile but for its random jitter
+// (build/bench/physics-settle --width 100 --circles 16000 --mu 0 --seconds 120),
+// about 600 circles near the top were still moving at 120 s (docs/PHYSICS.md).
 // Run it with --gtest_also_run_disabled_tests --gtest_filter='*SettlingPile*'.
 TEST_F(SettlingPile, DISABLED_FrictionlessFallsAsleepWithoutOverlapOrEnergyGrowth) { settle(0.0); }
 
