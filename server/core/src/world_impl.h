@@ -31,10 +31,11 @@ struct WarmImpulses {
 
 // Aligned to a cache line, so that the hot fields below are one line and the warm
 // ones the next: unaligned, a body's first 64 bytes straddled two lines, and every
-// contact touched three of a body's lines instead of two (about 4% of a step in a
-// flowing pile of 16,000 circles, whose bodies sit all over memory).
+// contact touched three of a body's lines instead of two (a few per cent of a step
+// in a flowing pile of 16,000 circles, docs/ACCURACY.md).
 struct alignas(64) Body {
-  // Hot: read by every pass over the contacts (the first cache line and a half).
+  // Hot: read by every pass over the contacts (the first cache line, and the
+  // second up to the generation).
   Vec2 position{};
   Vec2 half{};  // half extents of the bounding box (a circle's: radius, radius)
   Vec2 velocity{};
