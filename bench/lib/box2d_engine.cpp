@@ -3,7 +3,7 @@
 // asks. Boxes have fixed rotation (ours are axis-aligned). Box2D has no per-axis
 // velocity decay; our friction rate k maps to its linear damping (one rate, the
 // mean of both axes), which it applies as v /= 1 + k*dt. Contact (Coulomb)
-// friction is 0 because our model has none.
+// friction is the body's; Box2D mixes a pair's as the geometric mean, as ours does.
 #include <box2d/box2d.h>
 
 #include <memory>
@@ -71,7 +71,7 @@ class Box2DEngine final : public Engine {
     b2Body* body = world_->CreateBody(&def);
 
     b2FixtureDef fixture;
-    fixture.friction = 0.0f;
+    fixture.friction = static_cast<float>(spec.contact_friction);
     fixture.restitution = static_cast<float>(spec.restitution);
     fixture.density = 1.0f;
     b2CircleShape circle;

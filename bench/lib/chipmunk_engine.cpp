@@ -5,6 +5,9 @@
 // Restitution: Chipmunk multiplies both shapes' elasticities, so static shapes get
 // 1 and a contact keeps the dynamic body's value (ours and Box2D take the max).
 // Our friction rate k becomes Chipmunk's own exponential damping, per body.
+// Contact friction: Chipmunk multiplies both shapes' coefficients, where ours and
+// Box2D take their geometric mean; each shape gets the square root of the body's,
+// so that every pair's coefficient is the same in all three engines.
 #include <chipmunk/chipmunk.h>
 
 #include <cmath>
@@ -113,7 +116,7 @@ class ChipmunkEngine final : public Engine {
       }
       cpShapeSetElasticity(shape, spec.restitution);
     }
-    cpShapeSetFriction(shape, 0.0);
+    cpShapeSetFriction(shape, std::sqrt(spec.contact_friction));
     shapes_.push_back(cpSpaceAddShape(space_, shape));
   }
 

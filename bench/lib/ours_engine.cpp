@@ -20,6 +20,7 @@ phys::BodyDef to_def(const BodySpec& spec) {
   def.mass = spec.mass;
   def.restitution = spec.restitution;
   def.friction = spec.friction;
+  def.contact_friction = spec.contact_friction;
   return def;
 }
 

@@ -21,6 +21,9 @@ struct BodySpec {
   double mass = 1.0;
   double restitution = 0.0;
   phys::Vec2 friction{};  // velocity decay rate per axis, 1/s
+  // Coulomb friction between touching bodies; a pair's coefficient is the
+  // geometric mean of its two bodies' (ours and Box2D's rule).
+  double contact_friction = 0.0;
 };
 
 struct SceneSpec {

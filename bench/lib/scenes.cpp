@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <string>
 
+#include "rain.h"
+
 namespace bench {
 namespace {
 
@@ -176,6 +178,31 @@ SceneSpec rain_scene(int count, int steps, int first_window, int last_window) {
   const double top = lattice_top(count, -width / 2.0, width / 2.0, pitch);
   add_container(scene, -width / 2.0, width / 2.0, top + 10.0, false);
   add_lattice(scene, count, -width / 2.0, width / 2.0, pitch, 0.1, false, 0x5EED0001ULL);
+  return scene;
+}
+
+SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window) {
+  SceneSpec scene;
+  char name[64];
+  std::snprintf(name, sizeof name, "pile-rain-%d-mu%g", count, mu);
+  scene.name = name;
+  scene.steps = steps;
+  scene.first_window = first_window;
+  scene.last_window = last_window;
+  scene.sample_every = 30;
+  constexpr double inner = 50.0;  // the walls' inner faces at x = +-50
+  constexpr double wall_top = 500.0;
+  constexpr int per_row = 80;
+  add_container(scene, -inner, inner, wall_top, false);
+  phys::testing::Rain rain;
+  for (int n = 0; n < count; ++n) {
+    const phys::Vec2 centre{-47.4 + 1.2 * (n % per_row) + rain.uniform(-0.1, 0.1),
+                            1.0 + 1.2 * (n / per_row)};
+    BodySpec circle = dynamic_circle(centre, 0.5);
+    circle.velocity = {rain.uniform(-1.0, 1.0), 0.0};
+    scene.bodies.push_back(circle);
+  }
+  for (BodySpec& body : scene.bodies) body.contact_friction = mu;
   return scene;
 }
 

@@ -38,6 +38,13 @@ SceneSpec pyramid_scene(int base, int steps);
 // (floor and two walls), falling from rest.
 SceneSpec rain_scene(int count, int steps, int first_window, int last_window);
 
+// Hard case 6 as tests/stability/pile_test.cpp builds it: `count` circles of radius
+// 0.5 rained into a container 100 m wide with walls 500 m high, 80 to a row 1.2 m
+// apart from 1 m up, each nudged by up to 0.1 m and thrown sideways at up to 1 m/s
+// (so that they tumble into a pile rather than land as columns), by the tests' own
+// generator. Every body, walls included, has contact friction `mu`.
+SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window);
+
 // Issue 2's pile: `count` bodies, circles and boxes alternating, on a lattice in a
 // container about twice as wide as sqrt(count) metres.
 SceneSpec pile_scene(int count);
