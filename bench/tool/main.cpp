@@ -66,7 +66,8 @@ int main(int argc, char** argv) {
                  "Sleeping on all engines: on, off, both, or auto (both where it matters)")
       ->check(CLI::IsMember({"on", "off", "both", "auto"}));
   app.add_flag("--quick", mode.quick, "Fewer steps on the long scenes (a run of a few minutes)");
-  app.add_option("--rain-count", mode.rain_count, "Circles in the rain scene")
+  app.add_option("--rain-count", mode.rain_count,
+                 "Circles in the rain scenes (rain-N, pile-rain-N-mu0.5)")
       ->check(CLI::Range(1, 1000000));
   app.add_flag("--full-grid", grid.full_grid_on_large,
                "Run the whole settings grid on the large scenes too (slow)");
