@@ -181,11 +181,15 @@ SceneSpec rain_scene(int count, int steps, int first_window, int last_window) {
   return scene;
 }
 
-SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window) {
-  SceneSpec scene;
+std::string pile_rain_scene_name(int count, double mu) {
   char name[64];
   std::snprintf(name, sizeof name, "pile-rain-%d-mu%g", count, mu);
-  scene.name = name;
+  return name;
+}
+
+SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window) {
+  SceneSpec scene;
+  scene.name = pile_rain_scene_name(count, mu);
   scene.steps = steps;
   scene.first_window = first_window;
   scene.last_window = last_window;

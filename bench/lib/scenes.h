@@ -44,6 +44,7 @@ SceneSpec rain_scene(int count, int steps, int first_window, int last_window);
 // (so that they tumble into a pile rather than land as columns), by the tests' own
 // generator. Every body, walls included, has contact friction `mu`.
 SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window);
+std::string pile_rain_scene_name(int count, double mu);
 
 // Issue 2's pile: `count` bodies, circles and boxes alternating, on a lattice in a
 // container about twice as wide as sqrt(count) metres.

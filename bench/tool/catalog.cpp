@@ -36,11 +36,10 @@ std::vector<SceneEntry> scene_catalog(const Mode& mode) {
   // Hard case 6's pile as the stability test rains it (with friction, thrown
   // sideways), 30 s: from up to 240 m the last circles land after about 7 s.
   constexpr double pile_mu = 0.5;
-  const SceneSpec pile_probe = pile_rain_scene(mode.rain_count, pile_mu, 1, 0, 0);
-  catalog.push_back(
-      {pile_probe.name, ObserverKind::Pile, true, true, true, [rain_steps](const Mode& m) {
-         return pile_rain_scene(m.rain_count, pile_mu, rain_steps, 60, 60);
-       }});
+  catalog.push_back({pile_rain_scene_name(mode.rain_count, pile_mu), ObserverKind::Pile, true, true,
+                     true, [rain_steps](const Mode& m) {
+                       return pile_rain_scene(m.rain_count, pile_mu, rain_steps, 60, 60);
+                     }});
   const int stage_steps = mode.quick ? 120 : 600;
   for (StageVariant variant :
        {StageVariant::All, StageVariant::NoGravity, StageVariant::NoFriction,
