@@ -3,6 +3,7 @@
 // engine-independent SceneSpecs. Every random choice comes from a fixed seed, so a
 // scene is the same on every run and for every engine.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "physics/vec2.h"
