@@ -128,12 +128,12 @@ class SettlingPile : public ::testing::Test {
   }
 };
 
-// Settling, with friction (mu 0.5): by 30 s every circle is asleep (piles fall
-// asleep from the bottom up, docs/PHYSICS.md, "Sleep"), the
-// overlap is within the bound, and over 10 s more the kinetic energy never grows.
-// Measured (Release, current core): asleep by 9 s, overlap 0.0077 m (frozen when
-// it falls asleep), KE 0; before sleep from the bottom up, avalanches somewhere in the pile kept
-// all 16,000 awake (KE 9.6 J at 30 s, growing on 349 of the next 600 steps).
+// Settling, with friction (mu 0.5): by 30 s every circle is asleep (piles fall asleep
+// from the bottom up, docs/PHYSICS.md, "Sleep"), the overlap is within the bound, and
+// over 10 s more the kinetic energy never grows.
+// Measured (Release, current core): asleep by 9 s, overlap 0.0077 m (frozen when it
+// falls asleep), KE 0. Before sleep from the bottom up, avalanches somewhere in the
+// pile kept all 16,000 awake (KE 9.6 J at 30 s, growing on 349 of the next 600 steps).
 TEST_F(SettlingPile, WithFrictionFallsAsleepWithoutOverlapOrEnergyGrowth) { settle(0.5); }
 
 // Frictionless: DISABLED because the core does not meet it yet (issue 4 stays
