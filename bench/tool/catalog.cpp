@@ -33,13 +33,16 @@ std::vector<SceneEntry> scene_catalog(const Mode& mode) {
                        // Falling: the first second; settled: the last second.
                        return rain_scene(m.rain_count, rain_steps, 60, 60);
                      }});
-  // Hard case 6's pile as the stability test rains it (with friction, thrown
-  // sideways), 30 s: from up to 240 m the last circles land after about 7 s.
-  constexpr double pile_mu = 0.5;
-  catalog.push_back({pile_rain_scene_name(mode.rain_count, pile_mu), ObserverKind::Pile, true, true,
-                     true, [rain_steps](const Mode& m) {
-                       return pile_rain_scene(m.rain_count, pile_mu, rain_steps, 60, 60);
-                     }});
+  // Hard case 6's pile as the stability test rains it (thrown sideways), 30 s:
+  // from up to 240 m the last circles land after about 7 s. The test's friction is
+  // 0.5; other coefficients show how the cost depends on it (a frictionless pile
+  // flows for seconds after the rain has landed, a rough one stops where it lands).
+  for (double mu : mode.pile_friction) {
+    catalog.push_back({pile_rain_scene_name(mode.rain_count, mu), ObserverKind::Pile, true, true,
+                       true, [rain_steps, mu](const Mode& m) {
+                         return pile_rain_scene(m.rain_count, mu, rain_steps, 60, 60);
+                       }});
+  }
   const int stage_steps = mode.quick ? 120 : 600;
   for (StageVariant variant :
        {StageVariant::All, StageVariant::NoGravity, StageVariant::NoFriction,

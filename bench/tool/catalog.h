@@ -12,6 +12,8 @@ namespace bench {
 struct Mode {
   bool quick = false;
   int rain_count = 16000;
+  // Contact friction of hard case 6's pile rain: one scene per coefficient.
+  std::vector<double> pile_friction{0.5};
 };
 
 struct SceneEntry {

@@ -3,6 +3,7 @@
 // the per-phase profile on stderr. See docs/ACCURACY.md.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <charconv>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -67,8 +68,23 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"on", "off", "both", "auto"}));
   app.add_flag("--quick", mode.quick, "Fewer steps on the long scenes (a run of a few minutes)");
   app.add_option("--rain-count", mode.rain_count,
-                 "Circles in the rain scenes (rain-N, pile-rain-N-mu0.5)")
+                 "Circles in the rain scenes (rain-N, pile-rain-N-muF)")
       ->check(CLI::Range(1, 1000000));
+  app.add_option("--pile-friction", mode.pile_friction,
+                 "Contact friction of the pile rain, one scene each (pile-rain-N-muF)")
+      ->delimiter(',')
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // CLI::Range lets NaN through (every comparison with it is false).
+            double mu = 0.0;
+            const char* end = text.c_str() + text.size();
+            const auto [at, error] = std::from_chars(text.c_str(), end, mu);
+            if (error != std::errc{} || at != end || !(mu >= 0.0 && mu <= 100.0)) {
+              return "friction must be a number from 0 to 100, not " + text;
+            }
+            return {};
+          },
+          "FRICTION in [0, 100]"));
   app.add_flag("--full-grid", grid.full_grid_on_large,
                "Run the whole settings grid on the large scenes too (slow)");
   app.add_flag("--peers-everywhere", grid.peers_on_all_scenes,

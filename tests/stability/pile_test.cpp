@@ -152,10 +152,29 @@ TEST_F(SettlingPile, WithFrictionFallsAsleepWithoutOverlapOrEnergyGrowth) { sett
 // Run it with --gtest_also_run_disabled_tests --gtest_filter='*SettlingPile*'.
 TEST_F(SettlingPile, DISABLED_FrictionlessFallsAsleepWithoutOverlapOrEnergyGrowth) { settle(0.0); }
 
-INSTANTIATE_TEST_SUITE_P(ContactFriction, Pile, ::testing::Values(0.0, 0.5),
+// High friction: DISABLED because the core does not meet the overlap bound there
+// (issue 4 stays open). Measured on the current core (Release): every circle asleep
+// by 8 s and KE 0, but one pair overlaps by 0.029 m. The pair is wedged against a
+// wall: at 2.8 s two circles falling side by side land next to it. The lower one
+// lands on the shoulder of a third and is thrown at 1.3 m/s toward the wall, into
+// the one that rests there on the wall and on it. Then, in every step:
+//   - shock propagation makes the lower circle immovable for the one it carries,
+//     whose push is then undone by the wall's push and static friction;
+//   - in the velocity pass the lower circle's motion toward it (1.3 m/s) counts as
+//     zero (a supporter never lifts), so nothing stops it, and its position passes
+//     hold it in place.
+// The overlap is frozen when the two fall asleep at 3.3 s. Frictions of 0.9 to 5
+// leave 0.022 to 0.096 m the same way (docs/ACCURACY.md, "Hard case 6's pile at
+// other frictions").
+TEST_F(SettlingPile, DISABLED_WithHighFrictionFallsAsleepWithoutOverlapOrEnergyGrowth) {
+  settle(1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(ContactFriction, Pile, ::testing::Values(0.0, 0.5, 1.0),
                          [](const auto& param_info) {
-                           return param_info.param == 0.0 ? std::string("frictionless")
-                                                          : std::string("mu_0_5");
+                           if (param_info.param == 0.0) return std::string("frictionless");
+                           return param_info.param == 0.5 ? std::string("mu_0_5")
+                                                          : std::string("mu_1");
                          });
 
 }  // namespace
