@@ -113,6 +113,9 @@ class DeepPiles : public ::testing::TestWithParam<DeepPile> {};
 // rested above it fell freely onto it, and the frictionless pile reached 0.119 m.
 // With friction the pile moves less: 0.0096 m without them, 0.0002-0.009 m with
 // margins from 0.25 to 2 mm (avalanches inside the pile make it vary).
+// At frictions of 1, 2 and 5 it reached 0.020, 0.057 and 0.039 m while the position
+// passes' static friction could lower a body (undo its escape from a squeeze,
+// docs/PHYSICS.md, "Squeezes at high friction").
 TEST_P(DeepPiles, KeepTheirOverlapWithinTheBound) {
   const DeepPile pile = GetParam();
   World world;
@@ -127,13 +130,16 @@ TEST_P(DeepPiles, KeepTheirOverlapWithinTheBound) {
   EXPECT_LE(worst, pile.bound);
 }
 
-INSTANTIATE_TEST_SUITE_P(Rained, DeepPiles,
-                         ::testing::Values(DeepPile{0.5, 0.01, 0.0054},
-                                           DeepPile{0.0, 0.01, 0.00412}),
-                         [](const auto& param_info) {
-                           return param_info.param.mu == 0.0 ? std::string("frictionless")
-                                                             : std::string("mu_0_5");
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Rained, DeepPiles,
+    ::testing::Values(DeepPile{0.5, 0.01, 0.00089}, DeepPile{0.0, 0.01, 0.00412},
+                      DeepPile{1.0, 0.01, 0.00284}, DeepPile{2.0, 0.01, 0.00014},
+                      DeepPile{5.0, 0.01, 0.00023}),
+    [](const auto& param_info) {
+      const double mu = param_info.param.mu;
+      if (mu == 0.0) return std::string("frictionless");
+      return mu == 0.5 ? std::string("mu_0_5") : "mu_" + std::to_string(static_cast<int>(mu));
+    });
 
 INSTANTIATE_TEST_SUITE_P(
     Rained, SmallPiles,
