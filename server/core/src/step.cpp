@@ -721,19 +721,25 @@ class StepRunner {
     const double mu = mix_contact_friction(a.contact_friction, b.contact_friction) *
                       load_on(cand.fixed, a, b, dot(n, up_));
     if (!(length(slide) <= mu * push)) return;
-    // Under gravity the hold never lowers a body. The creep it is for always goes
-    // downhill. A slide uphill is a body escaping a squeeze: the other contacts'
-    // pushes lift it out of a pocket, or up a wall, because nothing else can move.
-    // Undoing that slide left it at a fixed point deep inside its neighbours, and
-    // with more friction it went deeper: up to 0.096 m in hard case 6's pile at
-    // friction 5 (docs/PHYSICS.md, "Squeezes at high friction").
-    if (gravity_on_) {
-      const double rise = dot(slide, up_);  // a rises by rise * wa, b by -rise * wb
-      if ((wa > 0.0 && rise < 0.0) || (wb > 0.0 && rise > 0.0)) return;
-    }
+    if (wa > 0.0 && !may_undo_slide(a, slide)) return;
+    if (wb > 0.0 && !may_undo_slide(b, -slide)) return;
     a.position += slide * wa;
     b.position -= slide * wb;
     ++w_.counters.friction_holds;
+  }
+
+  // Whether the hold may move `body` along `undo`. The creep it is for goes the way
+  // the body is driven (gravity and its own acceleration: downhill, under gravity
+  // alone), so undoing it never moves a body further that way, and a body driven by
+  // nothing has no creep to undo. Any other slide is a body escaping a squeeze: the
+  // pushes of its other contacts lift it out of a pocket, or up a wall, because
+  // nothing else can move. Undoing that left it at a fixed point deep inside its
+  // neighbours, and the more friction the deeper: up to 0.096 m in hard case 6's
+  // pile at friction 5 (docs/PHYSICS.md, "Squeezes at high friction").
+  bool may_undo_slide(const Body& body, Vec2 undo) const {
+    const Vec2 drive = gravity_on_ ? body.acceleration + s_.gravity : body.acceleration;
+    if (drive.x == 0.0 && drive.y == 0.0) return false;
+    return dot(undo, drive) <= 0.0;
   }
 
   // Two bodies at rest on each other are left a slop apart by the push that
