@@ -56,8 +56,11 @@ struct alignas(64) Body {
   // propagation keeps out of its contact impulses, put back into its friction.
   // Read with the materials, by every contact with friction.
   double load = 1.0;
-  // Cold: read once a step or less.
+  // Its own acceleration: read by integration, and by the position passes' static
+  // friction (which never moves a body further the way it is driven), so it ends
+  // the second cache line with the materials.
   Vec2 acceleration{};
+  // Cold: read once a step or less.
   double mass = 0.0;
   Vec2 friction{};
   double still_time = 0.0;  // seconds it has stayed near still_anchor
