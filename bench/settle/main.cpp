@@ -5,14 +5,19 @@
 // Circles of radius 0.5 are rained into a container `width` metres wide, in rows
 // 1.2 m apart from 1 m up, each with a random jitter of up to 0.1 m and a random
 // sideways speed of up to 1 m/s (the generator and layout of the tests'
-// rained piles, tests/stability/resting_test.cpp). Prints the kinetic energy and
-// the awake count every 5 s, then the time from which every circle stayed asleep
-// (or "never") and the worst overlap at the end.
+// rained piles, tests/stability/resting_test.cpp). With --per-row N the rows hold
+// N circles, centred, laid out as hard case 6's pile (tests/stability/pile_test.cpp:
+// --width 100 --circles 16000 --per-row 80 is that pile, circle for circle). Prints
+// the kinetic energy, the awake count and the worst overlap every 5 s, then the time
+// from which every circle stayed asleep (or "never"), and the pairs overlapping by
+// more than 5 mm and 1 cm at the end, with how many of them are side by side.
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "finite_range.h"
 #include "physics/world.h"
 #include "rain.h"
 
@@ -30,6 +35,7 @@ struct Options {
   int circles = 300;
   double mu = 0.5;
   int seconds = 40;
+  int per_row = 0;  // 0: as many as fit, from the left wall
 };
 
 void build(phys::World& world, const Options& o) {
@@ -45,37 +51,58 @@ void build(phys::World& world, const Options& o) {
   fixed({0.0, -0.5}, {half + 1.0, 0.5});
   fixed({-half - 0.5, 250.0}, {0.5, 250.0});
   fixed({half + 0.5, 250.0}, {0.5, 250.0});
-  const int per_row = std::max(1, static_cast<int>(o.width / 1.2));
+  const int per_row = o.per_row > 0 ? o.per_row : std::max(1, static_cast<int>(o.width / 1.2));
+  // The tests' two layouts, each with its own jitter expression (the same draws,
+  // rounded differently).
+  const double first_x = o.per_row > 0 ? 0.6 - 0.6 * per_row : -half + 0.6;
   Rain rain;
   for (int n = 0; n < o.circles; ++n) {
     BodyDef def;
     def.shape = Shape::Circle;
     def.radius = 0.5;
-    def.position = {-half + 0.6 + 1.2 * (n % per_row) + 0.1 * rain.uniform(-1.0, 1.0),
-                    1.0 + 1.2 * (n / per_row)};
+    const double jitter = o.per_row > 0 ? rain.uniform(-0.1, 0.1) : 0.1 * rain.uniform(-1.0, 1.0);
+    def.position = {first_x + 1.2 * (n % per_row) + jitter, 1.0 + 1.2 * (n / per_row)};
     def.velocity = {rain.uniform(-1.0, 1.0), 0.0};
     def.contact_friction = o.mu;
     world.add_body(def);
   }
 }
 
-// The deepest overlap of two circles or of a circle and the container.
-double worst_overlap(const phys::World& world, double half) {
+struct Overlaps {
+  double worst = 0.0;  // of two circles, or of a circle and the container
+  int over_5mm = 0;    // circle pairs
+  int over_1cm = 0;
+  int side_by_side_5mm = 0;  // of those, pairs whose normal is within 30 degrees of level
+  int side_by_side_1cm = 0;
+};
+
+Overlaps overlaps(const phys::World& world, double half) {
   std::vector<BodyState> circles;
   world.for_each_body([&](const BodyState& b) {
     if (b.motion == Motion::Dynamic) circles.push_back(b);
   });
   std::sort(circles.begin(), circles.end(),
             [](const BodyState& a, const BodyState& b) { return a.position.x < b.position.x; });
-  double worst = 0.0;
+  Overlaps o;
   for (std::size_t i = 0; i < circles.size(); ++i) {
     const Vec2 p = circles[i].position;
-    worst = std::max({worst, 0.5 - p.y, p.x + 0.5 - half, -half - (p.x - 0.5)});
+    o.worst = std::max({o.worst, 0.5 - p.y, p.x + 0.5 - half, -half - (p.x - 0.5)});
     for (std::size_t j = i + 1; j < circles.size() && circles[j].position.x - p.x < 1.0; ++j) {
-      worst = std::max(worst, 1.0 - length(circles[j].position - p));
+      const Vec2 d = circles[j].position - p;
+      const double depth = 1.0 - length(d);
+      o.worst = std::max(o.worst, depth);
+      const bool side_by_side = std::fabs(d.y) < 0.5;  // |sin| < 30 degrees at distance ~1
+      if (depth > 0.005) {
+        ++o.over_5mm;
+        o.side_by_side_5mm += side_by_side ? 1 : 0;
+      }
+      if (depth > 0.01) {
+        ++o.over_1cm;
+        o.side_by_side_1cm += side_by_side ? 1 : 0;
+      }
     }
   }
-  return worst;
+  return o;
 }
 
 }  // namespace
@@ -84,10 +111,14 @@ int main(int argc, char** argv) {
   Options o;
   CLI::App app{"How long a rained pile of circles takes to fall asleep"};
   app.add_option("--width", o.width, "Inner width of the container (m)")
-      ->check(CLI::Range(1.2, 1e4));
+      ->check(bench::finite_range("width", 1.2, 1e4));
   app.add_option("--circles", o.circles, "Circles of radius 0.5")->check(CLI::Range(1, 1000000));
-  app.add_option("--mu", o.mu, "Contact friction of every body")->check(CLI::Range(0.0, 10.0));
+  app.add_option("--mu", o.mu, "Contact friction of every body")
+      ->check(bench::finite_range("friction", 0.0, 10.0));
   app.add_option("--seconds", o.seconds, "Simulated seconds at 60 Hz")->check(CLI::Range(1, 3600));
+  app.add_option("--per-row", o.per_row,
+                 "Circles per row, centred, laid out as hard case 6's pile (0: as many as fit)")
+      ->check(CLI::Range(0, 1000000));
   CLI11_PARSE(app, argc, argv);
 
   phys::World world;
@@ -104,8 +135,8 @@ int main(int argc, char** argv) {
       world.for_each_body([&](const BodyState& b) {
         if (b.motion == Motion::Dynamic) energy += 0.5 * b.mass * dot(b.velocity, b.velocity);
       });
-      std::printf("t %5.1f s  KE %10.4g J  awake %zu\n", step * kDt, energy,
-                  world.awake_body_count());
+      std::printf("t %5.1f s  KE %10.4g J  awake %zu  worst overlap %.4g m\n", step * kDt, energy,
+                  world.awake_body_count(), overlaps(world, o.width / 2.0).worst);
     }
   }
   if (asleep_from > 0) {
@@ -113,6 +144,9 @@ int main(int argc, char** argv) {
   } else {
     std::printf("asleep from never (within %d s)\n", o.seconds);
   }
-  std::printf("worst overlap %.4g m\n", worst_overlap(world, o.width / 2.0));
+  const Overlaps end = overlaps(world, o.width / 2.0);
+  std::printf("worst overlap %.4g m\n", end.worst);
+  std::printf("pairs over 5 mm %d (%d side by side), over 1 cm %d (%d side by side)\n",
+              end.over_5mm, end.side_by_side_5mm, end.over_1cm, end.side_by_side_1cm);
   return 0;
 }

@@ -3,13 +3,13 @@
 // the per-phase profile on stderr. See docs/ACCURACY.md.
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <charconv>
 #include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "catalog.h"
+#include "finite_range.h"
 #include "report.h"
 #include "runner.h"
 
@@ -73,18 +73,7 @@ int main(int argc, char** argv) {
   app.add_option("--pile-friction", mode.pile_friction,
                  "Contact friction of the pile rain, one scene each (pile-rain-N-muF)")
       ->delimiter(',')
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            // CLI::Range lets NaN through (every comparison with it is false).
-            double mu = 0.0;
-            const char* end = text.c_str() + text.size();
-            const auto [at, error] = std::from_chars(text.c_str(), end, mu);
-            if (error != std::errc{} || at != end || !(mu >= 0.0 && mu <= 100.0)) {
-              return "friction must be a number from 0 to 100, not " + text;
-            }
-            return {};
-          },
-          "FRICTION in [0, 100]"));
+      ->check(bench::finite_range("friction", 0.0, 100.0));
   app.add_flag("--full-grid", grid.full_grid_on_large,
                "Run the whole settings grid on the large scenes too (slow)");
   app.add_flag("--peers-everywhere", grid.peers_on_all_scenes,
