@@ -21,15 +21,15 @@
 namespace phys::testing {
 namespace {
 
-// A ball wedged between two static balls whose contacts are 65 degrees from
-// vertical (steeper than the 60 degrees that count as support). Bound: over the
-// last 5 of 10 s no speed above 1e-9 m/s. Measured: 1.4e-17; 0.15 m/s without
-// either mechanism, 7e-7 m/s with near misses alone.
+// A ball wedged between two static balls whose contacts are 75 degrees from
+// vertical (outside the 72.5 degrees that count as support). Bound: over the
+// last 5 of 10 s no speed above 1e-9 m/s. Measured at 65 degrees, when support was
+// 60: 1.4e-17; 0.15 m/s without either mechanism, 7e-7 m/s with near misses alone.
 TEST(Resting, WedgedBallComesExactlyToRest) {
   WorldSettings settings;
   settings.sleeping = false;  // rest, not sleep, is what is measured
   World world(settings);
-  const double angle = 65.0 * 3.14159265358979323846 / 180.0;
+  const double angle = 75.0 * 3.14159265358979323846 / 180.0;
   for (const double side : {-1.0, 1.0}) {
     add_or_fail(world, circle_def({side * std::sin(angle), -std::cos(angle)}, 0.5, Motion::Static));
   }
@@ -115,7 +115,9 @@ class DeepPiles : public ::testing::TestWithParam<DeepPile> {};
 // margins from 0.25 to 2 mm (avalanches inside the pile make it vary).
 // At frictions of 1, 2 and 5 it reached 0.020, 0.057 and 0.039 m while the position
 // passes' static friction could lower a body (undo its escape from a squeeze,
-// docs/PHYSICS.md, "Squeezes at high friction").
+// docs/PHYSICS.md, "Squeezes at high friction"). With the support cone of 60
+// degrees (before 72.5) it measured 0.00089, 0.00412, 0.00284, 0.00014 and 0.00023 m
+// in the order of the cases below.
 TEST_P(DeepPiles, KeepTheirOverlapWithinTheBound) {
   const DeepPile pile = GetParam();
   World world;
@@ -130,24 +132,25 @@ TEST_P(DeepPiles, KeepTheirOverlapWithinTheBound) {
   EXPECT_LE(worst, pile.bound);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Rained, DeepPiles,
-    ::testing::Values(DeepPile{0.5, 0.01, 0.00089}, DeepPile{0.0, 0.01, 0.00412},
-                      DeepPile{1.0, 0.01, 0.00284}, DeepPile{2.0, 0.01, 0.00014},
-                      DeepPile{5.0, 0.01, 0.00023}),
-    [](const auto& param_info) {
-      const double mu = param_info.param.mu;
-      if (mu == 0.0) return std::string("frictionless");
-      return mu == 0.5 ? std::string("mu_0_5") : "mu_" + std::to_string(static_cast<int>(mu));
-    });
+INSTANTIATE_TEST_SUITE_P(Rained, DeepPiles,
+                         ::testing::Values(DeepPile{0.5, 0.01, 0.00016},
+                                           DeepPile{0.0, 0.01, 0.00485},
+                                           DeepPile{1.0, 0.01, 0.00029}, DeepPile{2.0, 0.01, 0.0},
+                                           DeepPile{5.0, 0.01, 0.00062}),
+                         [](const auto& param_info) {
+                           const double mu = param_info.param.mu;
+                           if (mu == 0.0) return std::string("frictionless");
+                           return mu == 0.5 ? std::string("mu_0_5")
+                                            : "mu_" + std::to_string(static_cast<int>(mu));
+                         });
 
 INSTANTIATE_TEST_SUITE_P(
     Rained, SmallPiles,
     ::testing::Values(SmallPile{3.6, 30, 0.5, 5.0, 1.63}, SmallPile{6.0, 30, 0.5, 5.0, 1.13},
-                      SmallPile{10.0, 30, 0.5, 5.0, 1.12}, SmallPile{6.0, 100, 0.5, 10.0, 2.22},
-                      SmallPile{10.0, 100, 0.5, 10.0, 1.65}, SmallPile{20.0, 300, 0.5, 15.0, 2.63},
-                      SmallPile{20.0, 1200, 0.5, 15.0, 4.47},
-                      SmallPile{20.0, 300, 0.0, 25.0, 8.83}),
+                      SmallPile{10.0, 30, 0.5, 5.0, 1.12}, SmallPile{6.0, 100, 0.5, 10.0, 2.20},
+                      SmallPile{10.0, 100, 0.5, 10.0, 1.60}, SmallPile{20.0, 300, 0.5, 15.0, 2.43},
+                      SmallPile{20.0, 1200, 0.5, 15.0, 6.92},
+                      SmallPile{20.0, 300, 0.0, 25.0, 10.18}),
     [](const auto& param_info) {
       const SmallPile& p = param_info.param;
       return "width" + std::to_string(static_cast<int>(p.width * 10.0)) + "dm_" +

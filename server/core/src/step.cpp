@@ -19,8 +19,14 @@ namespace {
 
 constexpr std::uint32_t kNone = UINT32_MAX;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-// A contact whose normal is within 60 degrees of "up" carries weight (supports).
-constexpr double kSupportCosine = 0.5;
+// A contact whose normal is within 72.5 degrees of "up" (cosine 0.3) carries weight
+// (supports). At 60 degrees, a circle sunk into a narrow gap between two resting
+// neighbours, meeting them less than 30 degrees above level, was no load of theirs:
+// the passes split its pushes half and half, pressing them apart into their
+// pockets. Hard case 6's pile without friction then fell asleep only at 60 s, with
+// rows of side-by-side circles compressed end to end (0.0148 m); at 72.5 degrees it
+// sleeps at 43.5 s with 0.0042 m (docs/PHYSICS.md, "Stacks: shock propagation").
+constexpr double kSupportCosine = 0.3;
 // A normal this close to gravity's line is a face resting on a face.
 constexpr double kAlongGravity = 1.0 - 1.0e-9;
 // Time-of-impact stops per body, axis and sub-step (a bounce, then maybe another).
@@ -647,7 +653,7 @@ class StepRunner {
 
   // Shock propagation, for both the position and the velocity passes: a body resting
   // on support (a fixed body below it, or a supported body) is immovable for the
-  // bodies it carries, for contacts within 60 degrees of vertical. wa and wb are
+  // bodies it carries, for contacts within 72.5 degrees of vertical. wa and wb are
   // the inverse-mass weights of the pair; the carrier's becomes zero.
   void carry(bool fixed, std::uint32_t lower_pos, std::uint32_t upper_pos, double up, double& wa,
              double& wb) {
@@ -965,7 +971,7 @@ class StepRunner {
     return std::fabs(impulse) > 1.0e-12;
   }
 
-  // The load factor of a contact's friction: for a support contact (within 60
+  // The load factor of a contact's friction: for a support contact (within 72.5
   // degrees of vertical), the load of the body on top; 1 for any other.
   static double load_on(bool fixed, const Body& lower, const Body& upper, double up) {
     if (up < -kSupportCosine) return lower.load;
