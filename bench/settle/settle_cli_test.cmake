@@ -2,16 +2,9 @@
 # non-zero exit; a small pile runs and reports what the tool promises.
 #   cmake -DSETTLE=path/to/physics-settle -P settle_cli_test.cmake
 
-function(expect_refused message)
-  execute_process(COMMAND ${SETTLE} --circles 10 --seconds 1 ${ARGN} RESULT_VARIABLE rc
-                  OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
-  if(rc EQUAL 0)
-    message(FATAL_ERROR "physics-settle took ${ARGN}; it should refuse it")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${message}")
-    message(FATAL_ERROR "physics-settle ${ARGN}: expected '${message}', got:\n${out}${err}")
-  endif()
-endfunction()
+set(TOOL ${SETTLE})
+set(TOOL_ARGS --circles 10 --seconds 1)
+include(${CMAKE_CURRENT_LIST_DIR}/../common/expect_refused.cmake)
 
 # CLI::Range alone lets NaN through (every comparison with it is false).
 foreach(bad nan inf -1 11 abc 0.5x)

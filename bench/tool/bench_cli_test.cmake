@@ -2,16 +2,9 @@
 # and a non-zero exit, and good ones are taken.
 #   cmake -DBENCH=path/to/physics-bench -P bench_cli_test.cmake
 
-function(expect_refused message)
-  execute_process(COMMAND ${BENCH} --list ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out
-                  ERROR_VARIABLE err TIMEOUT 60)
-  if(rc EQUAL 0)
-    message(FATAL_ERROR "physics-bench took ${ARGN}; it should refuse it")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${message}")
-    message(FATAL_ERROR "physics-bench ${ARGN}: expected '${message}', got:\n${out}${err}")
-  endif()
-endfunction()
+set(TOOL ${BENCH})
+set(TOOL_ARGS --list)
+include(${CMAKE_CURRENT_LIST_DIR}/../common/expect_refused.cmake)
 
 # CLI::Range alone lets NaN through (every comparison with it is false).
 foreach(bad nan inf -1 101 abc 0.5x)
