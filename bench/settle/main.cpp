@@ -120,6 +120,13 @@ int main(int argc, char** argv) {
                  "Circles per row, centred, laid out as hard case 6's pile (0: as many as fit)")
       ->check(CLI::Range(0, 1000000));
   CLI11_PARSE(app, argc, argv);
+  // Rows 1.2 m apart that are wider than the container would start circles inside
+  // or beyond its walls.
+  if (o.per_row > 0 && 1.2 * o.per_row > o.width) {
+    std::fprintf(stderr, "--per-row %d needs --width of at least %.1f m, not %g\n", o.per_row,
+                 1.2 * o.per_row, o.width);
+    return 2;
+  }
 
   phys::World world;
   build(world, o);

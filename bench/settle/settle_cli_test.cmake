@@ -14,6 +14,7 @@ foreach(bad nan inf 1 10001 abc)
   expect_refused("width must be a number from 1.2 to 10000, not ${bad}" --width "${bad}")
 endforeach()
 expect_refused("not in range" --per-row -1)
+expect_refused("--per-row 20 needs --width of at least 24.0 m, not 20" --per-row 20 --width 20)
 expect_refused("not in range" --circles 0)
 expect_refused("not in range" --seconds 0)
 
