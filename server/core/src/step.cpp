@@ -236,7 +236,7 @@ class StepRunner {
       any_contact_friction_ = any_contact_friction_ || b.contact_friction > 0.0;
       any_active_box_ = any_active_box_ || b.shape == Shape::Box;
       any_active_circle_ = any_active_circle_ || b.shape == Shape::Circle;
-      const Vec2 a = gravity_on_ ? b.acceleration + s_.gravity : b.acceleration;
+      const Vec2 a = driving_acceleration(b);
       const AxisMotion mx =
           integrate_axis(s_.integrator, b.position.x, b.velocity.x, a.x, b.friction.x, h_);
       const AxisMotion my =
@@ -288,10 +288,15 @@ class StepRunner {
     if (gravity_on_) ++w_.counters.gravity_passes;
   }
 
-  // The acceleration a body moves by: gravity and its own, less what its contacts
-  // held back last sub-step (see Body::held).
+  // What drives a body: gravity and its own acceleration.
+  Vec2 driving_acceleration(const Body& b) const {
+    return gravity_on_ ? b.acceleration + s_.gravity : b.acceleration;
+  }
+
+  // The acceleration a body moves by: what drives it, less what its contacts held
+  // back last sub-step (see Body::held).
   Vec2 moving_acceleration(const Body& b) const {
-    return gravity_on_ ? b.acceleration + s_.gravity + b.held : b.acceleration;
+    return gravity_on_ ? driving_acceleration(b) + b.held : b.acceleration;
   }
 
   // What a body may reach this sub-step, given its free-motion displacement d:
@@ -743,7 +748,7 @@ class StepRunner {
   // neighbours, and the more friction the deeper: up to 0.096 m in hard case 6's
   // pile at friction 5 (docs/PHYSICS.md, "Squeezes at high friction").
   bool may_undo_slide(const Body& body, Vec2 undo) const {
-    const Vec2 drive = gravity_on_ ? body.acceleration + s_.gravity : body.acceleration;
+    const Vec2 drive = driving_acceleration(body);
     if (drive.x == 0.0 && drive.y == 0.0) return false;
     return dot(undo, drive) <= 0.0;
   }
@@ -1037,7 +1042,7 @@ class StepRunner {
         b.held = {};
         continue;
       }
-      const Vec2 a = b.acceleration + s_.gravity;
+      const Vec2 a = driving_acceleration(b);  // hold_: gravity is on
       const Vec2 change = b.velocity - w_.velocity_before_contacts_[p];
       b.held = {held_part(change.x / h_, a.x), held_part(change.y / h_, a.y)};
     }
