@@ -1,8 +1,9 @@
 #pragma once
-// Clamps the contact solvers compute without a branch. Whether a contact's impulse
-// clamps at zero changes from contact to contact in a flowing pile, and the branch
-// the compiler made of std::max there was mispredicted about as often as taken
-// (docs/ACCURACY.md, "A branchless clamp in the velocity pass").
+// The velocity pass's clamp of an impulse at zero, without a branch. Whether a
+// contact's impulse clamps changes from contact to contact in a flowing pile; the
+// compiler made std::max a branch there, and the profile put the most samples of
+// the pass just after it (docs/ACCURACY.md, "A branchless clamp in the velocity
+// pass").
 #include <algorithm>
 
 #if defined(__SSE2__)
