@@ -817,8 +817,10 @@ class StepRunner {
     const auto candidate_count = static_cast<std::uint32_t>(w_.candidates_.size());
     // The iterations read and write only awake bodies' velocities (a fixed body's
     // counts as zero): they work on a dense copy by position, written back at the end.
+    // One velocity more, always zero: what a fixed body's lane reads (ContactLanes).
     auto& velocity = w_.solver_velocity_;
-    velocity.resize(active);
+    velocity.resize(active + 1);
+    velocity[active] = {};
     if (hold_) {  // what the contacts will do along "up" is measured from here
       w_.velocity_before_contacts_.resize(active);
       w_.in_contact_.assign(active, 0);
@@ -845,23 +847,54 @@ class StepRunner {
     const std::span<ContactRecord> contacts(w_.contacts_.data(), contact_count_);
     Vec2* const solver = velocity.data();
     const bool shock = shock_;
+    // Without friction, the iterations run two contacts at a time, with the same
+    // results (ContactLanes).
+    const bool lanes = kHaveContactLanes && !any_contact_friction_;
+    bool packed = false;
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
-      w_.supported_.assign(w_.active_.size(), 0);
-      std::uint8_t* const supported = w_.supported_.data();
       bool changed = false;
-      if (any_contact_friction_) {
-        solve_contacts<true>(contacts, solver, supported, shock, iteration == 0, changed);
+      if (lanes) {
+        if (!packed) {
+          w_.contact_lanes_.pack(contacts, shock_weights(contacts), active);
+          packed = true;
+        }
+        changed = w_.contact_lanes_.iterate(solver, iteration == 0);
       } else {
-        solve_contacts<false>(contacts, solver, supported, shock, iteration == 0, changed);
+        w_.supported_.assign(w_.active_.size(), 0);
+        std::uint8_t* const supported = w_.supported_.data();
+        if (any_contact_friction_) {
+          solve_contacts<true>(contacts, solver, supported, shock, iteration == 0, changed);
+        } else {
+          solve_contacts<false>(contacts, solver, supported, shock, iteration == 0, changed);
+        }
       }
       if (!changed && iteration > 0) break;
     }
+    if (packed) w_.contact_lanes_.unpack(contacts);
     for (std::uint32_t p = 0; p < active; ++p) {
       if (scattered_) prefetch_ahead(p);
       body(w_.active_[p]).velocity = velocity[p];
     }
     if (s_.warm_starting) remember_impulses();
     if (shock_ && any_contact_friction_) update_loads(contacts);
+  }
+
+  // Each contact's inverse masses after shock propagation's carry, in the order of
+  // the passes: they depend on the contacts' angles and order alone, so every
+  // iteration would find the same.
+  std::span<const ContactWeights> shock_weights(std::span<const ContactRecord> contacts) {
+    auto& weights = w_.contact_weights_;
+    weights.resize(contacts.size());
+    w_.supported_.assign(w_.active_.size(), 0);
+    std::uint8_t* const supported = w_.supported_.data();
+    for (std::size_t i = 0; i < contacts.size(); ++i) {
+      const ContactRecord& k = contacts[i];
+      double wa = k.inv_mass_lower;
+      double wb = k.inv_mass_upper;
+      carry(supported, shock_, k.fixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
+      weights[i] = {wa, wb};
+    }
+    return weights;
   }
 
   // One iteration over the contacts. Built apart for scenes with contact friction

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "contact_lanes.h"
 #include "physics/broadphase.h"
 #include "physics/world.h"
 
@@ -179,6 +180,8 @@ class WorldImpl {
   std::vector<Candidate> candidates_;
   std::vector<std::uint32_t> first_candidate_;       // per active position: CSR offsets
   std::vector<ContactRecord> contacts_;              // grow-only; the step counts those in use
+  std::vector<ContactWeights> contact_weights_;      // shock propagation's, per contact
+  ContactLanes contact_lanes_;                       // the frictionless iterations' lanes
   std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
   std::vector<Vec2> contact_normal_;                 // per candidate, when marked
   std::vector<std::uint8_t> supported_;              // per position in the processing order
