@@ -12,6 +12,8 @@ namespace phys {
 
 namespace {
 constexpr std::uint32_t kNoContact = UINT32_MAX;
+// How many lanes ahead the packing asks for the record it will read.
+constexpr std::uint32_t kReadAhead = 8;
 }  // namespace
 
 void ContactLanes::pack(std::span<const ContactRecord> contacts,
@@ -61,6 +63,13 @@ void ContactLanes::pack(std::span<const ContactRecord> contacts,
       p.lower[lane] = p.upper[lane] = bodies;
       warm_[lane_index] = 0.0;
       continue;
+    }
+    if (lane_index + kReadAhead < lanes) {  // the records are read out of order
+      const std::uint32_t ahead = contact_of_lane_[lane_index + kReadAhead];
+      if (ahead != kNoContact) {
+        __builtin_prefetch(&contacts[ahead]);
+        __builtin_prefetch(&contacts[ahead].impulse);
+      }
     }
     const ContactRecord& k = contacts[c];
     const ContactWeights w = weights[c];

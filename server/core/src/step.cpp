@@ -807,6 +807,16 @@ class StepRunner {
     // check per contact), contact_count_ says how many are this sub-step's.
     if (w_.contacts_.size() < w_.candidates_.size()) w_.contacts_.resize(w_.candidates_.size());
     contact_count_ = 0;
+    // Without friction, the iterations run two contacts at a time, with the same
+    // results (ContactLanes). Shock propagation's weights for them are found as the
+    // contacts are gathered, in the same order.
+    lanes_ = kHaveContactLanes && !any_contact_friction_;
+    if (lanes_) {
+      if (w_.contact_weights_.size() < w_.candidates_.size()) {
+        w_.contact_weights_.resize(w_.candidates_.size());
+      }
+      w_.supported_.assign(w_.active_.size(), 0);
+    }
     // Gather the marked candidates in candidate order, with what the iterations read.
     // Candidates come grouped by their lower body's position p, and a body is never
     // read again once its group is done (later groups hold only higher bodies), so
@@ -847,15 +857,13 @@ class StepRunner {
     const std::span<ContactRecord> contacts(w_.contacts_.data(), contact_count_);
     Vec2* const solver = velocity.data();
     const bool shock = shock_;
-    // Without friction, the iterations run two contacts at a time, with the same
-    // results (ContactLanes).
-    const bool lanes = kHaveContactLanes && !any_contact_friction_;
     bool packed = false;
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       bool changed = false;
-      if (lanes) {
+      if (lanes_) {
         if (!packed) {
-          w_.contact_lanes_.pack(contacts, shock_weights(contacts), active);
+          const std::span<const ContactWeights> weights(w_.contact_weights_.data(), contact_count_);
+          w_.contact_lanes_.pack(contacts, weights, active);
           packed = true;
         }
         changed = w_.contact_lanes_.iterate(solver, iteration == 0);
@@ -877,24 +885,6 @@ class StepRunner {
     }
     if (s_.warm_starting) remember_impulses();
     if (shock_ && any_contact_friction_) update_loads(contacts);
-  }
-
-  // Each contact's inverse masses after shock propagation's carry, in the order of
-  // the passes: they depend on the contacts' angles and order alone, so every
-  // iteration would find the same.
-  std::span<const ContactWeights> shock_weights(std::span<const ContactRecord> contacts) {
-    auto& weights = w_.contact_weights_;
-    weights.resize(contacts.size());
-    w_.supported_.assign(w_.active_.size(), 0);
-    std::uint8_t* const supported = w_.supported_.data();
-    for (std::size_t i = 0; i < contacts.size(); ++i) {
-      const ContactRecord& k = contacts[i];
-      double wa = k.inv_mass_lower;
-      double wb = k.inv_mass_upper;
-      carry(supported, shock_, k.fixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
-      weights[i] = {wa, wb};
-    }
-    return weights;
   }
 
   // One iteration over the contacts. Built apart for scenes with contact friction
@@ -1010,6 +1000,14 @@ class StepRunner {
     k.upper_generation = b.generation;
     k.fixed = cand.fixed;
     if (cand.fixed && b.is_dynamic()) wake_if_hit(cand, k, closing);
+    if (lanes_) {
+      // Shock propagation's weights depend on the contacts' angles and order alone,
+      // so every iteration would find the same: the lanes take them from here.
+      double wa = k.inv_mass_lower;
+      double wb = k.inv_mass_upper;
+      carry(cand.fixed, cand.lower_pos, cand.upper_pos, k.up, wa, wb);
+      w_.contact_weights_[contact_count_ - 1] = {wa, wb};
+    }
     if (hold_) {
       w_.in_contact_[cand.lower_pos] = 1;
       if (!cand.fixed) w_.in_contact_[cand.upper_pos] = 1;
@@ -1413,6 +1411,7 @@ class StepRunner {
   bool any_active_box_ = false;
   bool any_active_circle_ = false;
   bool any_contact_friction_ = false;
+  bool lanes_ = false;               // this sub-step's velocity iterations run in ContactLanes
   bool order_changed_ = false;       // set by order_by_height()
   bool scattered_ = false;           // the processing order is far from slot order
   bool all_inside_ = false;          // integrate() found every body inside its fat box
