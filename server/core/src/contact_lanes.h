@@ -9,9 +9,10 @@
 // of either of its bodies, and the contacts are visited level by level: a body's
 // contacts still come in their order, and the contacts of one level share no body,
 // so two of them fill two lanes. (Levels are a graph colouring that keeps each
-// body's order; a hard case 6 rain has about 130 levels of 150 contacts while it
-// flows.) Shock propagation's weights depend on the contacts' angles and order
-// alone, not on velocities, so they are computed once, in order, before.
+// body's order; the bench's lattice rain of 16,000 circles has about 130 levels of
+// 150 contacts while it flows.) Shock propagation's weights depend on the
+// contacts' angles and order alone, not on velocities: the step finds them once,
+// as it gathers the contacts, in the same order.
 //
 // Each lane does exactly the scalar pass's operations (no fused multiply-add: the
 // build has -ffp-contract=off), so every velocity and impulse is the same double.

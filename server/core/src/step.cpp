@@ -857,15 +857,13 @@ class StepRunner {
     const std::span<ContactRecord> contacts(w_.contacts_.data(), contact_count_);
     Vec2* const solver = velocity.data();
     const bool shock = shock_;
-    bool packed = false;
+    if (lanes_) {
+      const std::span<const ContactWeights> weights(w_.contact_weights_.data(), contact_count_);
+      w_.contact_lanes_.pack(contacts, weights, active);
+    }
     for (int iteration = 0; iteration < s_.velocity_iterations; ++iteration) {
       bool changed = false;
       if (lanes_) {
-        if (!packed) {
-          const std::span<const ContactWeights> weights(w_.contact_weights_.data(), contact_count_);
-          w_.contact_lanes_.pack(contacts, weights, active);
-          packed = true;
-        }
         changed = w_.contact_lanes_.iterate(solver, iteration == 0);
       } else {
         w_.supported_.assign(w_.active_.size(), 0);
@@ -878,7 +876,7 @@ class StepRunner {
       }
       if (!changed && iteration > 0) break;
     }
-    if (packed) w_.contact_lanes_.unpack(contacts);
+    if (lanes_) w_.contact_lanes_.unpack(contacts);
     for (std::uint32_t p = 0; p < active; ++p) {
       if (scattered_) prefetch_ahead(p);
       body(w_.active_[p]).velocity = velocity[p];
