@@ -53,7 +53,9 @@ class OursEngine final : public Engine {
   std::size_t awake_count() const override { return world_.awake_body_count(); }
 
   std::string iterations_label() const override {
-    return std::to_string(world_.settings().position_iterations);
+    // As Box2D's are named: velocity, then position.
+    return std::to_string(world_.settings().velocity_iterations) + "v/" +
+           std::to_string(world_.settings().position_iterations) + "p";
   }
 
   const phys::StepProfile* last_profile() const override { return &world_.last_profile(); }

@@ -26,3 +26,45 @@ endforeach()
 if(out MATCHES "pile-rain-100-mu0.5\n")
   message(FATAL_ERROR "--pile-friction should replace the default friction:\n${out}")
 endif()
+
+# Velocity iterations are a grid axis of their own, and bad counts are refused.
+expect_refused("not in range" --velocity-iterations 0)
+expect_refused("not in range" --velocity-iterations 65)
+expect_refused("not in range" --timeline-window 0)
+# Without --list: the file is opened before any scene runs.
+set(TOOL_ARGS)
+expect_refused("cannot write" --scenes projectile --engines ours --timeline /nonexistent/dir/t.csv)
+
+# The timeline: one row per window of each run, the last window taking what is left
+# (the projectile scenes run 120 steps at 60 Hz: windows of 50, 50 and 20 steps;
+# "projectile" picks projectile and projectile-friction, so 4 runs).
+set(timeline_file ${CMAKE_CURRENT_BINARY_DIR}/bench_cli_timeline.csv)
+file(REMOVE ${timeline_file})
+execute_process(COMMAND ${BENCH} --scenes projectile --engines ours --integrators exact
+                        --substeps 1 --iterations 4 --velocity-iterations 4,8
+                        --timeline ${timeline_file} --timeline-window 50
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "physics-bench --timeline failed (${rc}): ${err}")
+endif()
+foreach(label 4v/4p 8v/4p)
+  if(NOT out MATCHES ",exact,1,${label},on,")
+    message(FATAL_ERROR "physics-bench ran no ${label} row:\n${out}")
+  endif()
+endforeach()
+file(STRINGS ${timeline_file} timeline)
+list(LENGTH timeline lines)
+if(NOT lines EQUAL 13)
+  message(FATAL_ERROR "expected a header and 3 windows for each of 4 runs, got:\n${timeline}")
+endif()
+list(GET timeline 0 header)
+if(NOT header STREQUAL "scene,engine,iterations,sleeping,end_s,steps,awake,ms_mean,cpu_ms_mean")
+  message(FATAL_ERROR "unexpected timeline header: ${header}")
+endif()
+foreach(expected "projectile,ours,4v/4p,on,0.833333,50,1," "projectile,ours,4v/4p,on,2,20,1,"
+                 "projectile,ours,8v/4p,on,1.66667,50,1,")
+  string(FIND "${timeline}" "${expected}" found)
+  if(found EQUAL -1)
+    message(FATAL_ERROR "timeline has no row starting '${expected}':\n${timeline}")
+  endif()
+endforeach()

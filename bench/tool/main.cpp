@@ -43,9 +43,11 @@ int main(int argc, char** argv) {
                                             phys::to_string(phys::Integrator::Exact)};
   std::vector<int> substeps{1, 2, 4, 8};
   std::vector<int> iterations{1, 2, 4, 8};
+  std::vector<int> velocity_iterations{phys::WorldSettings{}.velocity_iterations};
   std::string sleep = "auto";
   std::string csv_path;
   std::string ratios_path;
+  std::string timeline_path;
   bench::Mode mode;
   bench::GridConfig grid;
   bool list = false;
@@ -61,6 +63,10 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::Range(1, 64));
   app.add_option("--iterations", iterations, "Our position iterations")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 64));
+  app.add_option("--velocity-iterations", velocity_iterations,
+                 "Our velocity iterations (default: the server's)")
       ->delimiter(',')
       ->check(CLI::Range(1, 64));
   app.add_option("--sleep", sleep,
@@ -80,6 +86,10 @@ int main(int argc, char** argv) {
                "Run the peers on every scene, not only rain and pyramid");
   app.add_option("--csv", csv_path, "Write the CSV here instead of stdout");
   app.add_option("--ratios", ratios_path, "Write peer/ours time ratios (CSV) here");
+  app.add_option("--timeline", timeline_path,
+                 "Write each run's time per step and awake bodies over simulated time (CSV) here");
+  app.add_option("--timeline-window", grid.timeline_steps, "Steps per row of --timeline")
+      ->check(CLI::Range(1, 1000000));
   app.add_flag("--list", list, "List the scenes and exit");
   CLI11_PARSE(app, argc, argv);
 
@@ -119,6 +129,7 @@ int main(int argc, char** argv) {
   }
   grid.substeps = substeps;
   grid.iterations = iterations;
+  grid.velocity_iterations = velocity_iterations;
   if (sleep == "on") grid.sleep_modes = {true};
   if (sleep == "off") grid.sleep_modes = {false};
   if (sleep == "both") grid.sleep_modes = {true, false};
@@ -137,12 +148,25 @@ int main(int argc, char** argv) {
     std::cerr << "physics-bench: Debian's Chipmunk prints a banner on stdout; use --csv FILE "
                  "for a clean CSV\n";
   }
+  std::ofstream timeline;
+  if (!timeline_path.empty()) {
+    timeline.open(timeline_path);
+    if (!timeline) {
+      std::cerr << "physics-bench: cannot write " << timeline_path << '\n';
+      return 1;
+    }
+    bench::write_timeline_header(timeline);
+  }
   bench::write_csv_header(csv);
   std::vector<bench::RunRow> rows;
   try {
     bench::run_grid(scenes, mode, grid, [&](const bench::RunRow& row) {
       bench::write_csv_row(csv, row);
       bench::write_summary(std::cerr, row);
+      if (timeline.is_open()) {
+        bench::write_timeline_rows(timeline, {row.scene, std::string(bench::to_string(row.engine)),
+                                              row.iterations, row.sleeping, &row.timeline});
+      }
       rows.push_back(row);
     });
   } catch (const std::exception& error) {

@@ -83,7 +83,7 @@ void write_ratios(std::ostream& out, const std::vector<RunRow>& rows) {
 void write_summary(std::ostream& out, const RunRow& row) {
   char text[512];
   std::snprintf(text, sizeof text,
-                "%-22s %-8s %-17s sub=%d it=%-5s sleep=%-3s median=%.4g ms mean=%.4g ms "
+                "%-22s %-8s %-17s sub=%d it=%-6s sleep=%-3s median=%.4g ms mean=%.4g ms "
                 "cpu=%.4g ms first=%s last=%s %s=%s",
                 row.scene.c_str(), std::string(to_string(row.engine)).c_str(),
                 row.integrator.c_str(), row.substeps, row.iterations.c_str(),

@@ -13,7 +13,8 @@ namespace {
 bool is_default(const OursSetting& setting) {
   const phys::WorldSettings defaults{};
   return setting.integrator == defaults.integrator && setting.substeps == defaults.substeps &&
-         setting.iterations == defaults.position_iterations;
+         setting.iterations == defaults.position_iterations &&
+         setting.velocity_iterations == defaults.velocity_iterations;
 }
 
 void add_profile(phys::StepProfile& sum, const phys::StepProfile& step) {
@@ -63,11 +64,12 @@ double thread_cpu_seconds() {
 }  // namespace
 
 RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engine_kind,
-                const OursSetting& setting, bool sleeping) {
+                const OursSetting& setting, bool sleeping, int timeline_steps) {
   EngineOptions options;
   options.ours.integrator = setting.integrator;
   options.ours.substeps = setting.substeps;
   options.ours.position_iterations = setting.iterations;
+  options.ours.velocity_iterations = setting.velocity_iterations;
   options.ours.profile = true;
   options.sleeping = sleeping;
   auto engine = make_engine(engine_kind, scene, options);
@@ -93,6 +95,7 @@ RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engi
   seconds.reserve(static_cast<std::size_t>(scene.steps));
   cpu_seconds.reserve(static_cast<std::size_t>(scene.steps));
   std::vector<BodySample> samples;
+  std::vector<std::size_t> awake_after_window;
   const phys::StepProfile* profile = engine->last_profile();
   for (int step = 1; step <= scene.steps; ++step) {
     const double cpu_start = thread_cpu_seconds();
@@ -102,6 +105,9 @@ RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engi
     cpu_seconds.push_back(thread_cpu_seconds() - cpu_start);
     seconds.push_back(std::chrono::duration<double>(stop - start).count());
     if (profile != nullptr) add_profile(row.profile_mean, *profile);
+    if (step % timeline_steps == 0 || step == scene.steps) {
+      awake_after_window.push_back(engine->awake_count());
+    }
     if (step % scene.sample_every == 0 || step == scene.steps) {
       engine->sample(samples);
       observer->observe(step, samples);
@@ -124,6 +130,7 @@ RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engi
     row.cpu_ms_last = mean_ms(cpu.last(window));
   }
   row.awake_end = engine->awake_count();
+  row.timeline = timeline_windows(all, cpu, awake_after_window, timeline_steps, scene.dt);
   row.measures = observer->finish();
   if (profile != nullptr) {
     row.has_profile = true;
@@ -147,12 +154,15 @@ void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const Gri
     }
     std::vector<OursSetting> settings;
     if (entry.large && !config.full_grid_on_large) {
-      settings.push_back({defaults.integrator, defaults.substeps, defaults.position_iterations});
+      settings.push_back({defaults.integrator, defaults.substeps, defaults.position_iterations,
+                          defaults.velocity_iterations});
     } else {
       for (phys::Integrator integrator : config.integrators) {
         for (int substeps : config.substeps) {
-          for (int iterations : config.iterations)
-            settings.push_back({integrator, substeps, iterations});
+          for (int iterations : config.iterations) {
+            for (int velocity_iterations : config.velocity_iterations)
+              settings.push_back({integrator, substeps, iterations, velocity_iterations});
+          }
         }
       }
     }
@@ -161,9 +171,9 @@ void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const Gri
         if (!engine_available(engine)) continue;
         if (engine == EngineKind::Ours) {
           for (const OursSetting& setting : settings)
-            emit(run_once(entry, scene, engine, setting, sleeping));
+            emit(run_once(entry, scene, engine, setting, sleeping, config.timeline_steps));
         } else if (entry.peers_by_default || config.peers_on_all_scenes) {
-          emit(run_once(entry, scene, engine, OursSetting{}, sleeping));
+          emit(run_once(entry, scene, engine, OursSetting{}, sleeping, config.timeline_steps));
         }
       }
     }

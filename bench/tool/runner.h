@@ -8,13 +8,15 @@
 #include "engine.h"
 #include "observers.h"
 #include "physics/settings.h"
+#include "timeline.h"
 
 namespace bench {
 
 struct OursSetting {
   phys::Integrator integrator = phys::Integrator::Exact;
   int substeps = 1;
-  int iterations = 4;
+  int iterations = 4;  // position iterations
+  int velocity_iterations = 8;
 };
 
 struct RunRow {
@@ -40,23 +42,26 @@ struct RunRow {
   Measures measures;
   phys::StepProfile profile_mean{};  // seconds per step, ours only
   bool has_profile = false;
+  std::vector<TimelineWindow> timeline;  // the cost over simulated time
 };
 
 struct GridConfig {
   std::vector<EngineKind> engines;
   std::vector<phys::Integrator> integrators;
   std::vector<int> substeps;
-  std::vector<int> iterations;
+  std::vector<int> iterations;  // position iterations
+  std::vector<int> velocity_iterations;
   // Empty: each scene's own choice (both for scenes where sleeping matters, on
   // otherwise). Otherwise these modes for every scene.
   std::vector<bool> sleep_modes;
   bool full_grid_on_large = false;
   bool peers_on_all_scenes = false;
+  int timeline_steps = 60;  // steps per window of RunRow::timeline
 };
 
 // Runs one scene on one engine with one setting.
 RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engine,
-                const OursSetting& setting, bool sleeping);
+                const OursSetting& setting, bool sleeping, int timeline_steps);
 
 // Runs the grid over the given scenes, handing each row to `emit` as it completes.
 void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const GridConfig& config,
