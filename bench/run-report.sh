@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs physics-bench over the report's scenes and settings grid, ours and the peers
 # in one process, writes the CSVs and the log into docs/ and draws the Pareto plot
-# (docs/accuracy-pareto.svg) with gnuplot.
+# (docs/accuracy-pareto.svg) and the rain's cost over time (docs/accuracy-timeline-rain.svg)
+# with gnuplot.
 #   bench/run-report.sh [--full] [BUILD_DIR]   (default BUILD_DIR: build)
 # The main run is --quick (short stacks, 8 s of rain; ours and the peers); --full
 # makes it the issue's lengths for the peers too (slow: tens of minutes). Then ours
@@ -21,7 +22,8 @@ command -v gnuplot >/dev/null || { echo "run-report: gnuplot not found (apt inst
 echo "run-report: $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)" | tee "$here/results/accuracy-run.log"
 # Every scene; the whole grid on the small ones; peers on every scene.
 "$bench" $length --scenes all --peers-everywhere \
-  --csv "$docs/accuracy.csv" --ratios "$docs/accuracy-ratios.csv" 2>>"$here/results/accuracy-run.log"
+  --csv "$docs/accuracy.csv" --ratios "$docs/accuracy-ratios.csv" \
+  --timeline "$docs/accuracy-timeline.csv" 2>>"$here/results/accuracy-run.log"
 # The long runs the issue's bounds speak of (10,000 resting steps, 30 s of the rains), ours
 # only: the peers need about a minute per thousand steps of these scenes.
 if [[ -n "$length" && "${RUN_LONG:-1}" == "1" ]]; then
@@ -39,4 +41,6 @@ for scene in projectile-friction bounce-e1 bounce-e0.5 column-50; do
     | sort -g > "$data/$scene.front.dat"
 done
 gnuplot -e "datadir='$data'; out='$docs/accuracy-pareto.svg'" "$here/report/pareto.gp"
-echo "run-report: wrote docs/accuracy.csv, docs/accuracy-ratios.csv, docs/accuracy-pareto.svg"
+"$here/plot-timeline.sh" "$docs/accuracy-timeline.csv" "rain-16000" "$docs/accuracy-timeline-rain.svg"
+echo "run-report: wrote docs/accuracy.csv, docs/accuracy-ratios.csv, docs/accuracy-pareto.svg," \
+  "docs/accuracy-timeline.csv, docs/accuracy-timeline-rain.svg"
