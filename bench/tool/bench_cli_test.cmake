@@ -68,3 +68,17 @@ foreach(expected "projectile,ours,4v/4p,on,0.833333,50,1," "projectile,ours,4v/4
     message(FATAL_ERROR "timeline has no row starting '${expected}':\n${timeline}")
   endif()
 endforeach()
+
+# A bad output path fails before any scene runs (--ratios was found bad only after
+# the runs, which can take many minutes): no CSV row may reach stdout first.
+expect_refused("cannot write" --scenes projectile --engines ours --csv /nonexistent/dir/c.csv)
+foreach(flag --ratios --timeline)
+  execute_process(COMMAND ${BENCH} --scenes projectile --engines ours ${flag} /nonexistent/dir/x.csv
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+  if(rc EQUAL 0 OR NOT err MATCHES "cannot write")
+    message(FATAL_ERROR "physics-bench ${flag} /nonexistent/dir/x.csv: expected 'cannot write' and a failure, got ${rc}:\n${err}")
+  endif()
+  if(out MATCHES "projectile,ours")
+    message(FATAL_ERROR "physics-bench ${flag} with a bad path ran scenes first:\n${out}")
+  endif()
+endforeach()

@@ -32,6 +32,13 @@ bool selected(const std::string& name, const std::vector<std::string>& patterns)
   });
 }
 
+// Opens an output the user named; says so on stderr when it cannot.
+bool open_output(std::ofstream& file, const std::string& path) {
+  file.open(path);
+  if (!file) std::cerr << "physics-bench: cannot write " << path << '\n';
+  return static_cast<bool>(file);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -135,26 +142,20 @@ int main(int argc, char** argv) {
   if (sleep == "both") grid.sleep_modes = {true, false};
 
   std::ofstream csv_file;
-  if (!csv_path.empty()) {
-    csv_file.open(csv_path);
-    if (!csv_file) {
-      std::cerr << "physics-bench: cannot write " << csv_path << '\n';
-      return 1;
-    }
-  }
+  if (!csv_path.empty() && !open_output(csv_file, csv_path)) return 1;
   std::ostream& csv = csv_path.empty() ? std::cout : csv_file;
   if (csv_path.empty() && std::find(grid.engines.begin(), grid.engines.end(),
                                     bench::EngineKind::Chipmunk) != grid.engines.end()) {
     std::cerr << "physics-bench: Debian's Chipmunk prints a banner on stdout; use --csv FILE "
                  "for a clean CSV\n";
   }
+  // Every output is opened before the first run: a bad path fails at once, not
+  // after a run of many minutes.
+  std::ofstream ratios;
+  if (!ratios_path.empty() && !open_output(ratios, ratios_path)) return 1;
   std::ofstream timeline;
   if (!timeline_path.empty()) {
-    timeline.open(timeline_path);
-    if (!timeline) {
-      std::cerr << "physics-bench: cannot write " << timeline_path << '\n';
-      return 1;
-    }
+    if (!open_output(timeline, timeline_path)) return 1;
     bench::write_timeline_header(timeline);
   }
   bench::write_csv_header(csv);
@@ -173,12 +174,7 @@ int main(int argc, char** argv) {
     std::cerr << "physics-bench: " << error.what() << '\n';
     return 1;
   }
-  if (!ratios_path.empty()) {
-    std::ofstream ratios(ratios_path);
-    if (!ratios) {
-      std::cerr << "physics-bench: cannot write " << ratios_path << '\n';
-      return 1;
-    }
+  if (ratios.is_open()) {
     bench::write_ratios(ratios, rows);
   } else {
     std::cerr << "\npeer time / our time (same run):\n";
