@@ -165,8 +165,7 @@ int main(int argc, char** argv) {
       bench::write_csv_row(csv, row);
       bench::write_summary(std::cerr, row);
       if (timeline.is_open()) {
-        bench::write_timeline_rows(timeline, {row.scene, std::string(bench::to_string(row.engine)),
-                                              row.iterations, row.sleeping, &row.timeline});
+        bench::write_timeline_rows(timeline, row);
       }
       rows.push_back(row);
     });

@@ -103,4 +103,17 @@ void write_summary(std::ostream& out, const RunRow& row) {
   out.flush();
 }
 
+void write_timeline_header(std::ostream& out) {
+  out << "scene,engine,iterations,sleeping,end_s,steps,awake,ms_mean,cpu_ms_mean\n";
+}
+
+void write_timeline_rows(std::ostream& out, const RunRow& row) {
+  for (const TimelineWindow& w : row.timeline) {
+    out << row.scene << ',' << to_string(row.engine) << ',' << row.iterations << ','
+        << (row.sleeping ? "on" : "off") << ',' << number(w.end_s) << ',' << w.steps << ','
+        << w.awake << ',' << number(w.ms_mean) << ',' << number(w.cpu_ms_mean) << '\n';
+  }
+  out.flush();
+}
+
 }  // namespace bench

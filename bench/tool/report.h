@@ -1,6 +1,6 @@
 #pragma once
-// CSV of the runs, the ratio table of ours against the peers, and a one-line
-// human summary (with the per-phase profile) of each run.
+// CSV of the runs, the ratio table of ours against the peers, a one-line human
+// summary (with the per-phase profile) of each run, and the CSV of their timelines.
 #include <ostream>
 #include <vector>
 
@@ -16,5 +16,9 @@ void write_csv_row(std::ostream& out, const RunRow& row);
 void write_ratios(std::ostream& out, const std::vector<RunRow>& rows);
 
 void write_summary(std::ostream& out, const RunRow& row);
+
+// The runs' timelines (RunRow::timeline): one row per window of each run.
+void write_timeline_header(std::ostream& out);
+void write_timeline_rows(std::ostream& out, const RunRow& row);
 
 }  // namespace bench

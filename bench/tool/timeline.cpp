@@ -1,21 +1,11 @@
 #include "timeline.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <stdexcept>
 
 #include "timing.h"
 
 namespace bench {
-namespace {
-
-std::string number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
-
-}  // namespace
 
 std::vector<TimelineWindow> timeline_windows(std::span<const double> wall_seconds,
                                              std::span<const double> cpu_seconds,
@@ -44,20 +34,6 @@ std::vector<TimelineWindow> timeline_windows(std::span<const double> wall_second
     windows.push_back(out);
   }
   return windows;
-}
-
-void write_timeline_header(std::ostream& out) {
-  out << "scene,engine,iterations,sleeping,end_s,steps,awake,ms_mean,cpu_ms_mean\n";
-}
-
-void write_timeline_rows(std::ostream& out, const TimelineRun& run) {
-  if (run.windows == nullptr) return;
-  for (const TimelineWindow& w : *run.windows) {
-    out << run.scene << ',' << run.engine << ',' << run.iterations << ','
-        << (run.sleeping ? "on" : "off") << ',' << number(w.end_s) << ',' << w.steps << ','
-        << w.awake << ',' << number(w.ms_mean) << ',' << number(w.cpu_ms_mean) << '\n';
-  }
-  out.flush();
 }
 
 }  // namespace bench

@@ -4,9 +4,7 @@
 // (a pile that flows for 5 s or for 15 s, then sleeps); the timeline shows it, for
 // ours and the peers alike.
 #include <cstddef>
-#include <ostream>
 #include <span>
-#include <string>
 #include <vector>
 
 namespace bench {
@@ -26,16 +24,5 @@ std::vector<TimelineWindow> timeline_windows(std::span<const double> wall_second
                                              std::span<const double> cpu_seconds,
                                              std::span<const std::size_t> awake_after,
                                              int window_steps, double dt);
-
-struct TimelineRun {
-  std::string scene;
-  std::string engine;
-  std::string iterations;
-  bool sleeping = true;
-  const std::vector<TimelineWindow>* windows = nullptr;
-};
-
-void write_timeline_header(std::ostream& out);
-void write_timeline_rows(std::ostream& out, const TimelineRun& run);
 
 }  // namespace bench
