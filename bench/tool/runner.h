@@ -15,8 +15,8 @@ namespace bench {
 struct OursSetting {
   phys::Integrator integrator = phys::Integrator::Exact;
   int substeps = 1;
-  int iterations = 4;  // position iterations
-  int velocity_iterations = 8;
+  int iterations = phys::WorldSettings{}.position_iterations;
+  int velocity_iterations = phys::WorldSettings{}.velocity_iterations;
 };
 
 struct RunRow {
