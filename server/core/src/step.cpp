@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <span>
 
@@ -39,6 +40,11 @@ constexpr double kPushMargin = 0.1;
 constexpr double kFatMargin = 0.1;
 // How many candidate pairs ahead the position passes prefetch scattered bodies.
 constexpr std::uint32_t kPrefetchAhead = 8;
+// Where a Body's cold line begins (its third cache line: still_time and after).
+constexpr std::size_t kColdLineOffset = 2 * 64;
+static_assert(offsetof(Body, still_time) >= kColdLineOffset &&
+                  offsetof(Body, still_anchor) + sizeof(Vec2) <= 3 * 64,
+              "update_sleep prefetches the line of still_time and still_anchor");
 // Up to this many static and sleeping bodies are tested one by one, not through
 // their grid.
 constexpr std::size_t kFewFixed = 8;
@@ -99,14 +105,18 @@ class StepRunner {
     w_.contact_normal_.resize(w_.candidates_.size());
     w_.contact_near_miss_.resize(w_.candidates_.size());
     w_.contact_gap_.resize(w_.candidates_.size());
-    move(1);
-    if (any_active_box_) collide_boxes_on<1>();
-    move(0);
+    if (any_active_box_) {
+      move(1);
+      collide_boxes_on<1>();
+      move(0);
+    } else {
+      move_both_axes();
+    }
     collide_on_x();
     {
       PhaseTimer t(s_.profile, w_.profile.resolve);
       restitution();
-      if (hold_) update_held();
+      if (hold_ && !held_updated_) update_held();
     }
     {
       PhaseTimer t(s_.profile, w_.profile.sleep);
@@ -123,6 +133,14 @@ class StepRunner {
   void prefetch_ahead(std::size_t p) const {
     if (p + kPrefetchAhead < w_.active_.size()) {
       __builtin_prefetch(&w_.bodies[w_.active_[p + kPrefetchAhead]]);
+    }
+  }
+  // The same, for a loop that reads a body's cold line too (still_time and after).
+  void prefetch_ahead_with_cold_line(std::size_t p) const {
+    if (p + kPrefetchAhead < w_.active_.size()) {
+      const Body* b = &w_.bodies[w_.active_[p + kPrefetchAhead]];
+      __builtin_prefetch(b);
+      __builtin_prefetch(reinterpret_cast<const char*>(b) + kColdLineOffset);
     }
   }
   // Awake bodies are processed from the lowest (along gravity) up, so that a body's
@@ -227,6 +245,10 @@ class StepRunner {
     // found with, in the same order, and those pairs are still a superset of the
     // ones that can touch (Box2D's fat boxes). The first body outside ends it.
     bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
+    // The boxes new pairs would be found with, made here while the body is in cache
+    // (find_candidates() takes them when the old pairs do not hold).
+    auto& next_fat = w_.next_fat_boxes_;
+    next_fat.resize(n);
     any_active_box_ = false;
     any_active_circle_ = false;
     for (std::size_t p = 0; p < n; ++p) {
@@ -272,8 +294,9 @@ class StepRunner {
       }
       w_.step_velocity_[p] = v;
       w_.step_displacement_[p] = d;
+      const Aabb box = needed_box(b, d);
+      next_fat[p] = fattened(b, box);
       if (all_inside) {
-        const Aabb box = needed_box(b, d);
         const Aabb& fat = w_.fat_boxes_[p];
         all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
                      box.max.y <= fat.max.y;
@@ -312,6 +335,13 @@ class StepRunner {
     return box;
   }
 
+  // The box a body's pairs are found with: what it needs, grown so that the pairs
+  // may be kept while it stays inside (see integrate()).
+  static Aabb fattened(const Body& b, const Aabb& needed) {
+    const double extra = kFatMargin * std::min(b.half.x, b.half.y);
+    return {needed.min - Vec2{extra, extra}, needed.max + Vec2{extra, extra}};
+  }
+
   // Candidate pairs for the whole sub-step: boxes fattened by how far each body can
   // move in it, so the pairs hold for both axis moves.
   void find_candidates() {
@@ -321,14 +351,7 @@ class StepRunner {
       return;
     }
     auto& fat = w_.fat_boxes_;
-    fat.resize(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      if (scattered_) prefetch_ahead(p);
-      const Body& b = body(w_.active_[p]);
-      const double extra = kFatMargin * std::min(b.half.x, b.half.y);
-      const Aabb box = needed_box(b, w_.step_displacement_[p]);
-      fat[p] = {box.min - Vec2{extra, extra}, box.max + Vec2{extra, extra}};
-    }
+    fat.swap(w_.next_fat_boxes_);  // integrate() made them
     w_.active_grid_.build(fat);
     w_.active_grid_.find_pairs(w_.active_pairs_);
 
@@ -367,36 +390,53 @@ class StepRunner {
   void move(int axis) {
     PhaseTimer t(s_.profile, w_.profile.integrate);
     if (scattered_) {
-      move<true>(axis);
+      move<true>(axis, axis);
     } else {
-      move<false>(axis);
+      move<false>(axis, axis);
     }
   }
 
+  // With no awake box there is no collision on Y between the moves: each body moves
+  // on Y and then on X in one walk over the bodies instead of two. The result is the
+  // two walks' bit for bit, because a body's moves read no other awake body (the
+  // sweep meets static and sleeping bodies only), and a walk over bodies scattered
+  // in memory costs as much as the moves themselves.
+  void move_both_axes() {
+    PhaseTimer t(s_.profile, w_.profile.integrate);
+    if (scattered_) {
+      move<true>(1, 0);
+    } else {
+      move<false>(1, 0);
+    }
+  }
+
+  // Moves each body on first_axis, then down to last_axis.
   template <bool kPrefetch>
-  void move(int axis) {
+  void move(int first_axis, int last_axis) {
     for (std::uint32_t p = 0; p < w_.active_.size(); ++p) {
       if (kPrefetch) prefetch_ahead(p);
       Body& b = body(w_.active_[p]);
-      const double v_end = component(w_.step_velocity_[p], axis);
-      const double x0 = component(b.position, axis);
-      const double x_end = x0 + component(w_.step_displacement_[p], axis);
       // With no static or sleeping body among its candidates (they come first) the
       // sweep has nothing to hit and the free motion stands: skip building its path.
       const std::uint32_t first = w_.first_candidate_[p];
       const bool near_fixed = first < w_.first_candidate_[p + 1] && w_.candidates_[first].fixed;
-      if (!s_.continuous || !near_fixed) {
-        component(b.position, axis) = x_end;
-        component(b.velocity, axis) = v_end;
-        continue;
+      for (int axis = first_axis; axis >= last_axis; --axis) {
+        const double v_end = component(w_.step_velocity_[p], axis);
+        const double x0 = component(b.position, axis);
+        const double x_end = x0 + component(w_.step_displacement_[p], axis);
+        if (!s_.continuous || !near_fixed) {
+          component(b.position, axis) = x_end;
+          component(b.velocity, axis) = v_end;
+          continue;
+        }
+        const double a = component(moving_acceleration(b), axis);
+        AxisPath path{
+            s_.integrator, x0,   component(b.velocity, axis), a, component(b.friction, axis), h_,
+            x_end,         v_end};
+        sweep(p, b, axis, path);
+        component(b.position, axis) = path.x1;
+        component(b.velocity, axis) = path.v1;
       }
-      const double a = component(moving_acceleration(b), axis);
-      AxisPath path{
-          s_.integrator, x0,   component(b.velocity, axis), a, component(b.friction, axis), h_,
-          x_end,         v_end};
-      sweep(p, b, axis, path);
-      component(b.position, axis) = path.x1;
-      component(b.velocity, axis) = path.v1;
     }
   }
 
@@ -877,10 +917,15 @@ class StepRunner {
       if (!changed && iteration > 0) break;
     }
     if (lanes_) w_.contact_lanes_.unpack(contacts);
+    // The velocities go back to the bodies; what the contacts held of each one's
+    // acceleration is found in the same walk (update_held's, while the body is in cache).
     for (std::uint32_t p = 0; p < active; ++p) {
       if (scattered_) prefetch_ahead(p);
-      body(w_.active_[p]).velocity = velocity[p];
+      Body& b = body(w_.active_[p]);
+      b.velocity = velocity[p];
+      if (hold_) update_held(p, b);
     }
+    held_updated_ = hold_;
     if (s_.warm_starting) remember_impulses();
     if (shock_ && any_contact_friction_) update_loads(contacts);
   }
@@ -1089,18 +1134,19 @@ class StepRunner {
   // acceleration: contacts hold a body back, never pull it, and never hold it back
   // harder than it is pushed.
   void update_held() {
-    const double rest_squared = rest_speed_ * rest_speed_;
     for (std::size_t p = 0; p < w_.active_.size(); ++p) {
       if (scattered_) prefetch_ahead(p);
-      Body& b = body(w_.active_[p]);
-      if (!w_.in_contact_[p] || dot(b.velocity, b.velocity) > rest_squared) {
-        b.held = {};
-        continue;
-      }
-      const Vec2 a = driving_acceleration(b);  // hold_: gravity is on
-      const Vec2 change = b.velocity - w_.velocity_before_contacts_[p];
-      b.held = {held_part(change.x / h_, a.x), held_part(change.y / h_, a.y)};
+      update_held(p, body(w_.active_[p]));
     }
+  }
+  void update_held(std::size_t p, Body& b) const {
+    if (!w_.in_contact_[p] || dot(b.velocity, b.velocity) > rest_speed_ * rest_speed_) {
+      b.held = {};
+      return;
+    }
+    const Vec2 a = driving_acceleration(b);  // hold_: gravity is on
+    const Vec2 change = b.velocity - w_.velocity_before_contacts_[p];
+    b.held = {held_part(change.x / h_, a.x), held_part(change.y / h_, a.y)};
   }
   // The part of a velocity change (per second) that held back an acceleration a.
   static double held_part(double change, double a) {
@@ -1197,15 +1243,21 @@ class StepRunner {
     // pile jitters by rounding-sized pushes at any instant, but a body at rest stays
     // within sleep_speed * sleep_time of where the window began.
     const double radius = s_.sleep_speed * s_.sleep_time;
-    for (std::uint32_t slot : w_.active_) {
-      Body& b = body(slot);
+    // Whether each body is ready is kept by position: the walks below read it there
+    // instead of from the body's cold cache line, all over memory.
+    auto& ready = w_.still_ready_;
+    ready.resize(n);
+    for (std::uint32_t p = 0; p < n; ++p) {
+      if (scattered_) prefetch_ahead_with_cold_line(p);
+      Body& b = body(w_.active_[p]);
       if (length(b.position - b.still_anchor) > radius) {
         b.still_anchor = b.position;
         b.still_time = 0.0;
       } else {
         b.still_time += h_;
       }
-      any_ready = any_ready || b.still_time >= s_.sleep_time;
+      ready[p] = static_cast<std::uint8_t>(b.still_time >= s_.sleep_time);
+      any_ready = any_ready || ready[p] != 0;
     }
     if (!any_ready) return;
 
@@ -1227,7 +1279,7 @@ class StepRunner {
     auto& island_ready = w_.sleep_ready_;
     island_ready.assign(n, 1);
     for (std::uint32_t p = 0; p < n; ++p) {
-      if (body(w_.active_[p]).still_time < s_.sleep_time) island_ready[root(p)] = 0;
+      if (!ready[p]) island_ready[root(p)] = 0;
     }
     auto& asleep = w_.goes_to_sleep_;
     asleep.resize(n);
@@ -1284,7 +1336,7 @@ class StepRunner {
     }
     for (std::uint32_t p = 0; p < n; ++p) {
       if (asleep[p] || first[p] == first[p + 1]) continue;
-      if (body(w_.active_[p]).still_time < s_.sleep_time) continue;
+      if (!w_.still_ready_[p]) continue;
       // A supporter later in the order (level with p, within the slop) is not judged
       // yet: p waits for the next sub-step.
       const auto on_sleeper = [&](std::uint32_t q) { return q == kNone || asleep[q] != 0; };
@@ -1314,7 +1366,7 @@ class StepRunner {
     state.assign(n, 0);
     bool any = false;
     for (std::uint32_t p = 0; p < n; ++p) {
-      if (!asleep[p] && body(w_.active_[p]).still_time >= s_.sleep_time) {
+      if (!asleep[p] && w_.still_ready_[p]) {
         state[p] = kCandidate;
         any = true;
       }
@@ -1410,6 +1462,7 @@ class StepRunner {
   bool any_active_circle_ = false;
   bool any_contact_friction_ = false;
   bool lanes_ = false;               // this sub-step's velocity iterations run in ContactLanes
+  bool held_updated_ = false;        // restitution() ran update_held's work already
   bool order_changed_ = false;       // set by order_by_height()
   bool scattered_ = false;           // the processing order is far from slot order
   bool all_inside_ = false;          // integrate() found every body inside its fat box

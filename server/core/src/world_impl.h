@@ -173,7 +173,8 @@ class WorldImpl {
   std::size_t fixed_sleeping_ = 0;  // sleeping bodies among them
 
   // Per-step scratch, kept to avoid allocating every step.
-  std::vector<Aabb> fat_boxes_;  // the boxes the current candidates were found with
+  std::vector<Aabb> fat_boxes_;       // the boxes the current candidates were found with
+  std::vector<Aabb> next_fat_boxes_;  // this sub-step's, should they be found again
   bool candidates_valid_ = false;
   std::vector<BodyPair> active_pairs_;
   std::vector<std::uint32_t> overlaps_;
@@ -200,6 +201,7 @@ class WorldImpl {
   std::vector<double> sort_keys_;
   std::vector<std::pair<double, std::uint32_t>> keyed_order_;  // merging joined bodies
   std::vector<std::uint8_t> sleep_ready_;
+  std::vector<std::uint8_t> still_ready_;  // per position: still for sleep_time
   std::vector<std::uint32_t> island_parent_;
   std::vector<std::uint8_t> goes_to_sleep_;    // per position, this sub-step's verdict
   std::vector<std::uint32_t> first_support_;   // per position: CSR offsets into supporters_
