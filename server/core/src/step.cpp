@@ -245,10 +245,12 @@ class StepRunner {
     // found with, in the same order, and those pairs are still a superset of the
     // ones that can touch (Box2D's fat boxes). The first body outside ends it.
     bool all_inside = w_.candidates_valid_ && !order_changed_ && w_.fat_boxes_.size() == n;
-    // The boxes new pairs would be found with, made here while the body is in cache
-    // (find_candidates() takes them when the old pairs do not hold).
+    // When the pairs are sure to be found anew (the order or the lists changed, as in
+    // every step of a flowing pile), the boxes they will be found with are made here,
+    // while the body is in cache. A resting stack, whose pairs are kept, pays nothing.
+    fat_made_ = !all_inside;
     auto& next_fat = w_.next_fat_boxes_;
-    next_fat.resize(n);
+    if (fat_made_) next_fat.resize(n);
     any_active_box_ = false;
     any_active_circle_ = false;
     for (std::size_t p = 0; p < n; ++p) {
@@ -294,9 +296,10 @@ class StepRunner {
       }
       w_.step_velocity_[p] = v;
       w_.step_displacement_[p] = d;
-      const Aabb box = needed_box(b, d);
-      next_fat[p] = fattened(b, box);
-      if (all_inside) {
+      if (fat_made_) {
+        next_fat[p] = fattened(b, needed_box(b, d));
+      } else if (all_inside) {
+        const Aabb box = needed_box(b, d);
         const Aabb& fat = w_.fat_boxes_[p];
         all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
                      box.max.y <= fat.max.y;
@@ -351,7 +354,16 @@ class StepRunner {
       return;
     }
     auto& fat = w_.fat_boxes_;
-    fat.swap(w_.next_fat_boxes_);  // integrate() made them
+    if (fat_made_) {
+      fat.swap(w_.next_fat_boxes_);
+    } else {  // the last pairs looked reusable until a body left its box
+      fat.resize(n);
+      for (std::size_t p = 0; p < n; ++p) {
+        if (scattered_) prefetch_ahead(p);
+        const Body& b = body(w_.active_[p]);
+        fat[p] = fattened(b, needed_box(b, w_.step_displacement_[p]));
+      }
+    }
     w_.active_grid_.build(fat);
     w_.active_grid_.find_pairs(w_.active_pairs_);
 
@@ -1466,6 +1478,7 @@ class StepRunner {
   bool order_changed_ = false;       // set by order_by_height()
   bool scattered_ = false;           // the processing order is far from slot order
   bool all_inside_ = false;          // integrate() found every body inside its fat box
+  bool fat_made_ = false;            // integrate() made the new fat boxes (next_fat_boxes_)
   std::uint32_t contact_count_ = 0;  // records in use at the front of contacts_
   double surely_slow_;               // squared speeds at or below this are under max_speed
 };
