@@ -1304,7 +1304,7 @@ class StepRunner {
       b.velocity = {};
       b.held = {};
       b.load = 1.0;
-      w_.lists_dirty_ = true;
+      w_.fell_asleep(w_.active_[p]);
     }
   }
 

@@ -102,6 +102,7 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
   }
   ++alive_count_;
   lists_dirty_ = true;
+  rebuild_all_ = true;
   return {index, generation};
 }
 
@@ -134,6 +135,7 @@ bool WorldImpl::remove_body(BodyId id) {
   b->alive = false;
   free_slots_.push_back(id.index);
   lists_dirty_ = true;
+  rebuild_all_ = true;
   return true;
 }
 
@@ -145,50 +147,8 @@ void WorldImpl::wake(std::uint32_t index) {
     b.awake = true;
     ++counters.wakes;
     lists_dirty_ = true;
+    changed_slots_.push_back(index);
   }
-}
-
-void WorldImpl::rebuild_lists() {
-  // The bodies that stay awake keep their places in the processing order: the step
-  // keeps it sorted by height, nearly unchanged from one step to the next, and a
-  // list rebuilt in slot order had to be sorted from scratch every step in which
-  // any body of a settling pile fell asleep or woke. Their warm-start entries stay
-  // in the pool too; only a body that leaves the list keeps its own in its slot.
-  // (A slot reused by add_body since is already kWarmInSlot and empty.)
-  previous_active_.swap(active_);
-  active_.clear();
-  listed_.assign(bodies.size(), 0);
-  for (std::uint32_t slot : previous_active_) {
-    const Body& b = bodies[slot];
-    if (b.alive && b.is_dynamic() && b.awake) {
-      active_.push_back(slot);
-      listed_[slot] = 1;
-    } else if (warm_first[slot] != kWarmInSlot) {
-      std::copy_n(warm_pool.begin() + warm_first[slot], warm_count[slot], warm[slot].entries);
-      warm_first[slot] = kWarmInSlot;
-    }
-  }
-  const std::size_t kept = active_.size();
-  fixed_.clear();
-  fixed_boxes_.clear();
-  fixed_circles_ = 0;
-  fixed_sleeping_ = 0;
-  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    const Body& b = bodies[i];
-    if (!b.alive) continue;
-    if (b.is_dynamic() && b.awake) {
-      if (!listed_[i]) active_.push_back(i);  // woken or added: joins at the end
-    } else {
-      fixed_.push_back(i);
-      fixed_boxes_.push_back(b.bounds());
-      fixed_circles_ += b.shape == Shape::Circle ? 1 : 0;
-      fixed_sleeping_ += b.is_dynamic() ? 1 : 0;
-    }
-  }
-  joined_ = kept == 0 ? 0 : active_.size() - kept;
-  fixed_grid_.build(fixed_boxes_);
-  lists_dirty_ = false;
-  candidates_valid_ = false;
 }
 
 BodyState WorldImpl::state_of(std::uint32_t index) const {
@@ -268,6 +228,7 @@ bool World::set_position(BodyId id, Vec2 position) {
   b->still_time = 0.0;
   impl_->wake(id.index);
   impl_->lists_dirty_ = true;
+  impl_->rebuild_all_ = true;  // a static or sleeping body's box moved
   return true;
 }
 

@@ -150,7 +150,15 @@ class WorldImpl {
   friend class World;
 
   BodyDefError check(const BodyDef& def) const;
+  // body_lists.cpp: the dense lists below, after bodies fell asleep, woke, or were
+  // added, removed or moved by hand.
   void rebuild_lists();
+  void rebuild_fixed_and_joined();
+  void update_fixed_and_joined();
+  void fell_asleep(std::uint32_t slot) {
+    changed_slots_.push_back(slot);
+    lists_dirty_ = true;
+  }
 
   std::vector<std::uint32_t> free_slots_;  // LIFO: deterministic reuse
   std::size_t alive_count_ = 0;
@@ -158,17 +166,24 @@ class WorldImpl {
 
   // Dense lists, rebuilt when `lists_dirty_`.
   bool lists_dirty_ = true;
+  // Whether the rebuild must walk every body (a body was added, removed or moved by
+  // hand); otherwise only the bodies that fell asleep or woke since, in
+  // changed_slots_, can have changed lists (a settling pile: some every step).
+  bool rebuild_all_ = true;
+  std::vector<std::uint32_t> changed_slots_;
   std::vector<std::uint32_t> active_;  // awake dynamic bodies, in processing order
   // How many bodies at the end of active_ joined it at the last rebuild (woken or
   // added, in slot order) and are still to be merged into the order by height; 0
   // when the whole list is new (its order then is slot order).
   std::size_t joined_ = 0;
   std::vector<std::uint32_t> previous_active_;  // rebuild_lists' scratch
-  std::vector<std::uint8_t> listed_;            // per slot: kept in active_ (scratch)
-  std::vector<std::uint32_t> fixed_;            // static and sleeping bodies, ascending index
+  std::vector<std::uint8_t> listed_;  // per slot: kept in active_ (scratch, all 0 between uses)
+  std::vector<std::uint32_t> fixed_;  // static and sleeping bodies, ascending index
   UniformGrid fixed_grid_;
   UniformGrid active_grid_;
   std::vector<Aabb> fixed_boxes_;
+  std::vector<std::uint32_t> merged_fixed_;  // update_fixed_and_joined's scratch
+  std::vector<Aabb> merged_fixed_boxes_;
   std::size_t fixed_circles_ = 0;   // circles among the static and sleeping bodies
   std::size_t fixed_sleeping_ = 0;  // sleeping bodies among them
 

@@ -1,0 +1,119 @@
+// The world's dense lists of bodies: the awake ones in processing order, and the
+// static and sleeping ones (ascending slot) with their boxes and grid.
+#include <algorithm>
+
+#include "world_impl.h"
+
+namespace phys {
+
+namespace {
+bool is_awake_dynamic(const Body& b) { return b.alive && b.is_dynamic() && b.awake; }
+bool is_fixed(const Body& b) { return b.alive && !(b.is_dynamic() && b.awake); }
+}  // namespace
+
+void WorldImpl::rebuild_lists() {
+  // The bodies that stay awake keep their places in the processing order: the step
+  // keeps it sorted by height, nearly unchanged from one step to the next, and a
+  // list rebuilt in slot order had to be sorted from scratch every step in which
+  // any body of a settling pile fell asleep or woke. Their warm-start entries stay
+  // in the pool too; only a body that leaves the list keeps its own in its slot.
+  // (A slot reused by add_body since is already kWarmInSlot and empty.)
+  previous_active_.swap(active_);
+  active_.clear();
+  listed_.resize(bodies.size(), 0);
+  for (std::uint32_t slot : previous_active_) {
+    if (is_awake_dynamic(bodies[slot])) {
+      active_.push_back(slot);
+      listed_[slot] = 1;
+    } else if (warm_first[slot] != kWarmInSlot) {
+      std::copy_n(warm_pool.begin() + warm_first[slot], warm_count[slot], warm[slot].entries);
+      warm_first[slot] = kWarmInSlot;
+    }
+  }
+  const std::size_t kept = active_.size();
+  // A few bodies fell asleep or woke: only they are looked at. Past an eighth of
+  // the bodies, one walk over all of them is as cheap.
+  if (!rebuild_all_ && changed_slots_.size() <= bodies.size() / 8) {
+    update_fixed_and_joined();
+  } else {
+    rebuild_fixed_and_joined();
+  }
+  for (std::size_t i = 0; i < kept; ++i) listed_[active_[i]] = 0;
+  changed_slots_.clear();
+  rebuild_all_ = false;
+  joined_ = kept == 0 ? 0 : active_.size() - kept;
+  fixed_grid_.build(fixed_boxes_);
+  lists_dirty_ = false;
+  candidates_valid_ = false;
+}
+
+// Every body: the awake ones not kept join the awake list at its end (woken or
+// added, in slot order), the rest are the static and sleeping ones.
+void WorldImpl::rebuild_fixed_and_joined() {
+  fixed_.clear();
+  fixed_boxes_.clear();
+  fixed_circles_ = 0;
+  fixed_sleeping_ = 0;
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const Body& b = bodies[i];
+    if (!b.alive) continue;
+    if (is_awake_dynamic(b)) {
+      if (!listed_[i]) active_.push_back(i);
+    } else {
+      fixed_.push_back(i);
+      fixed_boxes_.push_back(b.bounds());
+      fixed_circles_ += b.shape == Shape::Circle ? 1 : 0;
+      fixed_sleeping_ += b.is_dynamic() ? 1 : 0;
+    }
+  }
+}
+
+// The same lists from the last ones and the bodies that fell asleep or woke since:
+// every other body is where it was (asleep or static bodies do not move, and a body
+// moved by hand asks for the whole rebuild), so the result is the whole rebuild's.
+void WorldImpl::update_fixed_and_joined() {
+  auto& changed = changed_slots_;
+  // (A body that fell asleep and was woken by hand before this rebuild is there twice.)
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  for (std::uint32_t slot : changed) {
+    if (is_awake_dynamic(bodies[slot]) && !listed_[slot]) active_.push_back(slot);
+  }
+  const auto count_in = [this](std::uint32_t slot) {
+    fixed_circles_ += bodies[slot].shape == Shape::Circle ? 1 : 0;
+    fixed_sleeping_ += bodies[slot].is_dynamic() ? 1 : 0;
+  };
+  const auto count_out = [this](std::uint32_t slot) {
+    fixed_circles_ -= bodies[slot].shape == Shape::Circle ? 1 : 0;
+    fixed_sleeping_ -= bodies[slot].is_dynamic() ? 1 : 0;
+  };
+  // Merged by slot: the fixed bodies that did not change, and the changed ones that
+  // are fixed now.
+  merged_fixed_.clear();
+  merged_fixed_boxes_.clear();
+  std::size_t i = 0;
+  const auto keep_until = [&](std::uint32_t slot) {
+    for (; i < fixed_.size() && fixed_[i] < slot; ++i) {
+      merged_fixed_.push_back(fixed_[i]);
+      merged_fixed_boxes_.push_back(fixed_boxes_[i]);
+    }
+  };
+  for (std::uint32_t slot : changed) {
+    keep_until(slot);
+    if (i < fixed_.size() && fixed_[i] == slot) {  // it was fixed
+      ++i;
+      count_out(slot);
+    }
+    const Body& b = bodies[slot];
+    if (is_fixed(b)) {
+      merged_fixed_.push_back(slot);
+      merged_fixed_boxes_.push_back(b.bounds());
+      count_in(slot);
+    }
+  }
+  keep_until(UINT32_MAX);
+  fixed_.swap(merged_fixed_);
+  fixed_boxes_.swap(merged_fixed_boxes_);
+}
+
+}  // namespace phys
