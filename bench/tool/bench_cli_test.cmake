@@ -80,3 +80,59 @@ foreach(flag --ratios --timeline)
     message(FATAL_ERROR "physics-bench ${flag} with a bad path ran scenes first:\n${out}")
   endif()
 endforeach()
+
+# Runs that take turns (--interleave) give every engine the same steps as runs one
+# after another: the same rows but for the times, and the same timeline windows.
+# 7 steps a turn does not divide the scenes' 120 and 600 steps, nor the 50-step
+# windows, so a step lost or repeated at a turn's end shows.
+expect_refused("not in range" --interleave -1)
+cmake_policy(SET CMP0007 NEW)  # the rows' empty fields stay list elements
+set(run_args --scenes projectile bounce-e0.5 --engines ours,box2d,chipmunk --peers-everywhere
+             --integrators exact,semi-implicit-euler --substeps 1 --iterations 4
+             --timeline-window 50)
+foreach(mode one_after_another taking_turns)
+  set(extra)
+  if(mode STREQUAL "taking_turns")
+    set(extra --interleave 7)
+  endif()
+  set(timeline_file ${CMAKE_CURRENT_BINARY_DIR}/bench_cli_${mode}.csv)
+  execute_process(COMMAND ${BENCH} ${run_args} ${extra} --timeline ${timeline_file}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "physics-bench ${extra} failed (${rc}): ${err}")
+  endif()
+  # Each row without its times: columns 9-15 and 24-28 (ms_*, cpu_ms_*, prof_*).
+  # (The notes' ';' would split a CMake list: made '|' first.)
+  string(REPLACE ";" "|" out "${out}")
+  string(REPLACE "\n" ";" rows "${out}")
+  set(kept_${mode})
+  foreach(row IN LISTS rows)
+    string(REPLACE "," ";" fields "${row}")
+    list(LENGTH fields count)
+    if(count LESS 30)
+      continue()
+    endif()
+    list(GET fields 0 1 2 3 4 5 6 7 8 16 17 18 19 20 21 22 23 29 untimed)
+    list(JOIN untimed "," untimed)
+    list(APPEND kept_${mode} "${untimed}")
+  endforeach()
+  # Each timeline row's scene, engine, iterations, sleeping, end, steps and awake.
+  file(STRINGS ${timeline_file} windows)
+  set(windows_${mode})
+  foreach(window IN LISTS windows)
+    string(REGEX MATCH "^([^,]*,){7}" start "${window}")
+    list(APPEND windows_${mode} "${start}")
+  endforeach()
+endforeach()
+list(LENGTH kept_one_after_another rows)
+if(rows LESS 6)
+  message(FATAL_ERROR "expected at least 6 runs, got ${rows}:\n${kept_one_after_another}")
+endif()
+if(NOT kept_one_after_another STREQUAL kept_taking_turns)
+  message(FATAL_ERROR "--interleave changed the runs' results:\none after another:\n"
+                      "${kept_one_after_another}\ntaking turns:\n${kept_taking_turns}")
+endif()
+if(NOT windows_one_after_another STREQUAL windows_taking_turns)
+  message(FATAL_ERROR "--interleave changed the timeline's windows:\n"
+                      "${windows_one_after_another}\n${windows_taking_turns}")
+endif()

@@ -97,6 +97,10 @@ int main(int argc, char** argv) {
                  "Write each run's time per step and awake bodies over simulated time (CSV) here");
   app.add_option("--timeline-window", grid.timeline_steps, "Steps per row of --timeline")
       ->check(CLI::Range(1, 1000000));
+  app.add_option("--interleave", grid.interleave_steps,
+                 "The runs of a scene take turns of N steps, so that a drift of the machine's "
+                 "speed slows every engine alike (0: one run after another)")
+      ->check(CLI::Range(0, 1000000));
   app.add_flag("--list", list, "List the scenes and exit");
   CLI11_PARSE(app, argc, argv);
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <ctime>
 #include <span>
+#include <utility>
 
 #include "timing.h"
 
@@ -63,8 +64,10 @@ double thread_cpu_seconds() {
 
 }  // namespace
 
-RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engine_kind,
-                const OursSetting& setting, bool sleeping, int timeline_steps) {
+RunInProgress::RunInProgress(const SceneEntry& entry, const SceneSpec& scene,
+                             EngineKind engine_kind, const OursSetting& setting, bool sleeping,
+                             int timeline_steps)
+    : scene_(scene), timeline_steps_(timeline_steps) {
   EngineOptions options;
   options.ours.integrator = setting.integrator;
   options.ours.substeps = setting.substeps;
@@ -72,76 +75,111 @@ RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engi
   options.ours.velocity_iterations = setting.velocity_iterations;
   options.ours.profile = true;
   options.sleeping = sleeping;
-  auto engine = make_engine(engine_kind, scene, options);
+  engine_ = make_engine(engine_kind, scene, options);
 
-  RunRow row;
-  row.scene = scene.name;
-  row.engine = engine_kind;
-  row.sleeping = sleeping;
-  row.bodies = scene.bodies.size();
-  row.steps = scene.steps;
-  row.iterations = engine->iterations_label();
+  row_.scene = scene.name;
+  row_.engine = engine_kind;
+  row_.sleeping = sleeping;
+  row_.bodies = scene.bodies.size();
+  row_.steps = scene.steps;
+  row_.iterations = engine_->iterations_label();
   if (engine_kind == EngineKind::Ours) {
-    row.integrator = phys::to_string(setting.integrator);
-    row.substeps = setting.substeps;
-    row.default_setting = is_default(setting);
+    row_.integrator = phys::to_string(setting.integrator);
+    row_.substeps = setting.substeps;
+    row_.default_setting = is_default(setting);
   } else {
-    row.integrator = "peer";
+    row_.integrator = "peer";
   }
+  observer_ = make_observer(entry.observer, scene);
+  seconds_.reserve(static_cast<std::size_t>(scene.steps));
+  cpu_seconds_.reserve(static_cast<std::size_t>(scene.steps));
+}
 
-  auto observer = make_observer(entry.observer, scene);
-  std::vector<double> seconds;
-  std::vector<double> cpu_seconds;
-  seconds.reserve(static_cast<std::size_t>(scene.steps));
-  cpu_seconds.reserve(static_cast<std::size_t>(scene.steps));
-  std::vector<BodySample> samples;
-  std::vector<std::size_t> awake_after_window;
-  const phys::StepProfile* profile = engine->last_profile();
-  for (int step = 1; step <= scene.steps; ++step) {
+RunInProgress::~RunInProgress() = default;
+RunInProgress::RunInProgress(RunInProgress&&) noexcept = default;
+
+void RunInProgress::advance(int steps) {
+  const phys::StepProfile* profile = engine_->last_profile();
+  for (int n = 0; n < steps && !done(); ++n) {
+    const int step = ++steps_done_;
     const double cpu_start = thread_cpu_seconds();
     const auto start = std::chrono::steady_clock::now();
-    engine->step(scene.dt);
+    engine_->step(scene_.dt);
     const auto stop = std::chrono::steady_clock::now();
-    cpu_seconds.push_back(thread_cpu_seconds() - cpu_start);
-    seconds.push_back(std::chrono::duration<double>(stop - start).count());
-    if (profile != nullptr) add_profile(row.profile_mean, *profile);
-    if (step % timeline_steps == 0 || step == scene.steps) {
-      awake_after_window.push_back(engine->awake_count());
+    cpu_seconds_.push_back(thread_cpu_seconds() - cpu_start);
+    seconds_.push_back(std::chrono::duration<double>(stop - start).count());
+    if (profile != nullptr) add_profile(row_.profile_mean, *profile);
+    if (step % timeline_steps_ == 0 || step == scene_.steps) {
+      awake_after_window_.push_back(engine_->awake_count());
     }
-    if (step % scene.sample_every == 0 || step == scene.steps) {
-      engine->sample(samples);
-      observer->observe(step, samples);
+    if (step % scene_.sample_every == 0 || step == scene_.steps) {
+      engine_->sample(samples_);
+      observer_->observe(step, samples_);
     }
   }
+}
 
-  const std::span<const double> all(seconds);
+RunRow RunInProgress::finish() {
+  RunRow row = std::move(row_);
+  const std::span<const double> all(seconds_);
   row.ms_median = median_ms(all);
   row.ms_mean = mean_ms(all);
-  const std::span<const double> cpu(cpu_seconds);
+  const std::span<const double> cpu(cpu_seconds_);
   row.cpu_ms_mean = mean_ms(cpu);
-  if (scene.first_window > 0 && scene.first_window <= scene.steps) {
-    const auto window = static_cast<std::size_t>(scene.first_window);
+  if (scene_.first_window > 0 && scene_.first_window <= scene_.steps) {
+    const auto window = static_cast<std::size_t>(scene_.first_window);
     row.ms_first = median_ms(all.first(window));
     row.cpu_ms_first = mean_ms(cpu.first(window));
   }
-  if (scene.last_window > 0 && scene.last_window <= scene.steps) {
-    const auto window = static_cast<std::size_t>(scene.last_window);
+  if (scene_.last_window > 0 && scene_.last_window <= scene_.steps) {
+    const auto window = static_cast<std::size_t>(scene_.last_window);
     row.ms_last = median_ms(all.last(window));
     row.cpu_ms_last = mean_ms(cpu.last(window));
   }
-  row.awake_end = engine->awake_count();
-  row.timeline = timeline_windows(all, cpu, awake_after_window, timeline_steps, scene.dt);
-  row.measures = observer->finish();
-  if (profile != nullptr) {
+  row.awake_end = engine_->awake_count();
+  row.timeline = timeline_windows(all, cpu, awake_after_window_, timeline_steps_, scene_.dt);
+  row.measures = observer_->finish();
+  if (engine_->last_profile() != nullptr) {
     row.has_profile = true;
-    scale_profile(row.profile_mean, 1.0 / scene.steps);
+    scale_profile(row.profile_mean, 1.0 / scene_.steps);
   }
-  if (const phys::StageCounters* counters = engine->counters()) {
+  if (const phys::StageCounters* counters = engine_->counters()) {
     if (!row.measures.notes.empty()) row.measures.notes += ';';
     row.measures.notes += counter_notes(*counters);
   }
   return row;
 }
+
+RunRow run_once(const SceneEntry& entry, const SceneSpec& scene, EngineKind engine_kind,
+                const OursSetting& setting, bool sleeping, int timeline_steps) {
+  RunInProgress run(entry, scene, engine_kind, setting, sleeping, timeline_steps);
+  run.advance(scene.steps);
+  return run.finish();
+}
+
+namespace {
+// All the runs at once, taking turns of config.interleave_steps steps: a machine
+// whose speed drifts over minutes then slows every engine alike, where one run
+// after another gave each engine a different part of the drift. Each engine's
+// steps are the same as in a run of its own; only the times change.
+void run_interleaved(const SceneEntry& entry, const SceneSpec& scene,
+                     const std::vector<std::pair<EngineKind, OursSetting>>& runs, bool sleeping,
+                     const GridConfig& config, const std::function<void(const RunRow&)>& emit) {
+  std::vector<RunInProgress> in_progress;
+  in_progress.reserve(runs.size());
+  for (const auto& [engine, setting] : runs) {
+    in_progress.emplace_back(entry, scene, engine, setting, sleeping, config.timeline_steps);
+  }
+  for (bool any_left = true; any_left;) {
+    any_left = false;
+    for (RunInProgress& run : in_progress) {
+      run.advance(config.interleave_steps);
+      any_left = any_left || !run.done();
+    }
+  }
+  for (RunInProgress& run : in_progress) emit(run.finish());
+}
+}  // namespace
 
 void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const GridConfig& config,
               const std::function<void(const RunRow&)>& emit) {
@@ -167,14 +205,22 @@ void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const Gri
       }
     }
     for (bool sleeping : sleep_modes) {
+      // The runs of this scene and sleep mode, in the order their rows come out.
+      std::vector<std::pair<EngineKind, OursSetting>> runs;
       for (EngineKind engine : config.engines) {
         if (!engine_available(engine)) continue;
         if (engine == EngineKind::Ours) {
-          for (const OursSetting& setting : settings)
-            emit(run_once(entry, scene, engine, setting, sleeping, config.timeline_steps));
+          for (const OursSetting& setting : settings) runs.push_back({engine, setting});
         } else if (entry.peers_by_default || config.peers_on_all_scenes) {
-          emit(run_once(entry, scene, engine, OursSetting{}, sleeping, config.timeline_steps));
+          runs.push_back({engine, OursSetting{}});
         }
+      }
+      if (config.interleave_steps > 0) {
+        run_interleaved(entry, scene, runs, sleeping, config, emit);
+        continue;
+      }
+      for (const auto& [engine, setting] : runs) {
+        emit(run_once(entry, scene, engine, setting, sleeping, config.timeline_steps));
       }
     }
   }

@@ -1,5 +1,6 @@
 #pragma once
 // Runs scenes on engines over a grid of settings, one row per run.
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -57,6 +58,38 @@ struct GridConfig {
   bool full_grid_on_large = false;
   bool peers_on_all_scenes = false;
   int timeline_steps = 60;  // steps per window of RunRow::timeline
+  // 0: each run after the other. N: the runs of a scene take turns of N steps.
+  int interleave_steps = 0;
+};
+
+// One run being stepped, which can stop and go on (for runs that take turns).
+class RunInProgress {
+ public:
+  RunInProgress(const SceneEntry& entry, const SceneSpec& scene, EngineKind engine,
+                const OursSetting& setting, bool sleeping, int timeline_steps);
+  ~RunInProgress();
+  RunInProgress(RunInProgress&&) noexcept;
+  RunInProgress(const RunInProgress&) = delete;
+  RunInProgress& operator=(const RunInProgress&) = delete;
+  RunInProgress& operator=(RunInProgress&&) = delete;
+
+  // Up to `steps` more steps, fewer at the scene's end.
+  void advance(int steps);
+  bool done() const { return steps_done_ >= scene_.steps; }
+  // The row, with its times and error measures. Once, when done.
+  RunRow finish();
+
+ private:
+  const SceneSpec& scene_;
+  int timeline_steps_;
+  std::unique_ptr<Engine> engine_;
+  std::unique_ptr<Observer> observer_;
+  RunRow row_;
+  int steps_done_ = 0;
+  std::vector<double> seconds_;
+  std::vector<double> cpu_seconds_;
+  std::vector<BodySample> samples_;
+  std::vector<std::size_t> awake_after_window_;
 };
 
 // Runs one scene on one engine with one setting.
