@@ -20,8 +20,10 @@ mkdir -p "$here/results"
 command -v gnuplot >/dev/null || { echo "run-report: gnuplot not found (apt install gnuplot-nox)" >&2; exit 1; }
 
 echo "run-report: $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)" | tee "$here/results/accuracy-run.log"
-# Every scene; the whole grid on the small ones; peers on every scene.
-"$bench" $length --scenes all --peers-everywhere \
+# Every scene; the whole grid on the small ones; peers on every scene. The runs of a
+# scene take turns of a second of simulated time (--interleave), so that a drift in
+# the machine's speed slows ours and the peers alike and the ratios stay steady.
+"$bench" $length --scenes all --peers-everywhere --interleave 60 \
   --csv "$docs/accuracy.csv" --ratios "$docs/accuracy-ratios.csv" \
   --timeline "$docs/accuracy-timeline.csv" 2>>"$here/results/accuracy-run.log"
 # The long runs the bounds speak of (10,000 resting steps, 30 s of the rains), ours
