@@ -95,9 +95,6 @@ RunInProgress::RunInProgress(const SceneEntry& entry, const SceneSpec& scene,
   cpu_seconds_.reserve(static_cast<std::size_t>(scene.steps));
 }
 
-RunInProgress::~RunInProgress() = default;
-RunInProgress::RunInProgress(RunInProgress&&) noexcept = default;
-
 void RunInProgress::advance(int steps) {
   const phys::StepProfile* profile = engine_->last_profile();
   for (int n = 0; n < steps && !done(); ++n) {

@@ -67,11 +67,6 @@ class RunInProgress {
  public:
   RunInProgress(const SceneEntry& entry, const SceneSpec& scene, EngineKind engine,
                 const OursSetting& setting, bool sleeping, int timeline_steps);
-  ~RunInProgress();
-  RunInProgress(RunInProgress&&) noexcept;
-  RunInProgress(const RunInProgress&) = delete;
-  RunInProgress& operator=(const RunInProgress&) = delete;
-  RunInProgress& operator=(RunInProgress&&) = delete;
 
   // Up to `steps` more steps, fewer at the scene's end.
   void advance(int steps);
