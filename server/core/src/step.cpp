@@ -115,8 +115,7 @@ class StepRunner {
     collide_on_x();
     {
       PhaseTimer t(s_.profile, w_.profile.resolve);
-      restitution();
-      if (hold_ && !held_updated_) update_held();
+      restitution();  // and, with hold_, update_held's work
     }
     {
       PhaseTimer t(s_.profile, w_.profile.sleep);
@@ -904,7 +903,10 @@ class StepRunner {
       b.velocity = v;
       velocity[p] = v;
     }
-    if (contact_count_ == 0) return;
+    if (contact_count_ == 0) {  // no contact holds anything
+      if (hold_) update_held();
+      return;
+    }
     ++w_.counters.restitution_passes;
     const std::span<ContactRecord> contacts(w_.contacts_.data(), contact_count_);
     Vec2* const solver = velocity.data();
@@ -937,7 +939,6 @@ class StepRunner {
       b.velocity = velocity[p];
       if (hold_) update_held(p, b);
     }
-    held_updated_ = hold_;
     if (s_.warm_starting) remember_impulses();
     if (shock_ && any_contact_friction_) update_loads(contacts);
   }
@@ -1474,7 +1475,6 @@ class StepRunner {
   bool any_active_circle_ = false;
   bool any_contact_friction_ = false;
   bool lanes_ = false;               // this sub-step's velocity iterations run in ContactLanes
-  bool held_updated_ = false;        // restitution() ran update_held's work already
   bool order_changed_ = false;       // set by order_by_height()
   bool scattered_ = false;           // the processing order is far from slot order
   bool all_inside_ = false;          // integrate() found every body inside its fat box
