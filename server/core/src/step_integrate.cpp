@@ -8,7 +8,7 @@
 namespace phys {
 
 // Friction, acceleration and gravity: the free motion of each awake body over the
-// sub-step, per axis. The moves below apply it.
+// sub-step, per axis. The moves (step_moves.cpp) apply it.
 void StepRunner::integrate() {
   if (scattered_) {
     integrate<true>();
