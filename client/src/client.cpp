@@ -7,6 +7,8 @@
 
 #include "convert.h"
 #include "wire/framing.h"
+#include "wire/predictor.h"
+#include "wire/reconstruction.h"
 
 namespace client {
 namespace {
@@ -56,6 +58,17 @@ struct Client::Io {
   }
 };
 
+// What the client holds between snapshots: the reconstruction the server mirrors,
+// and the input fields, which the server sends only when they change.
+struct Client::Held {
+  wire::Reconstruction reconstruction;
+  wire::Predictor predictor;
+  wire::Quantum quantum;
+  Encoding encoding = Encoding::Predicted;
+  std::uint64_t last_applied_input_tick = 0;
+  bool has_applied_input = false;
+};
+
 std::string ClientError::to_string() const {
   std::string text = client::to_string(state);
   if (server) {
@@ -82,6 +95,10 @@ bool Client::connect(std::chrono::milliseconds timeout) {
   snapshots_.clear();
   errors_.clear();
   pongs_.clear();
+  held_.reset();
+  ack_pending_ = false;
+  ack_due_ = 0;
+  full_state_asked_ = false;
   next_sequence_ = 1;
   state_ = ConnectionState::Connecting;
   const auto deadline = Clock::now() + timeout;
@@ -111,12 +128,12 @@ bool Client::connect(std::chrono::milliseconds timeout) {
                                              io_->connect_error.message());
     return false;
   }
-  // Snapshots are small and must leave at once: no Nagle delay (issue 3).
+  // Snapshots are small and must leave at once: no Nagle delay.
   io_->socket.set_option(asio::ip::tcp::no_delay(true), ec);
 
   state_ = ConnectionState::AwaitingWelcome;
-  if (!send_frame(wire::encode_frame(
-          convert::make_hello(config_.protocol_version, config_.name, config_.token)))) {
+  if (!send_frame(wire::encode_frame(convert::make_hello(config_.protocol_version, config_.name,
+                                                         config_.token, config_.view)))) {
     return false;
   }
   start_read();
@@ -130,9 +147,14 @@ bool Client::connect(std::chrono::milliseconds timeout) {
 
 bool Client::send_input(std::uint64_t tick, double ax, double ay) {
   if (state_ != ConnectionState::Connected) return false;
-  if (!send_frame(wire::encode_frame(convert::make_input(tick, ax, ay, next_sequence_)))) {
-    return false;
+  std::string frames;
+  if (ack_pending_) {
+    frames = wire::encode_frame(convert::make_ack(ack_due_));
+    ack_pending_ = false;
+    ++stats_.acks_sent;
   }
+  frames += wire::encode_frame(convert::make_input(tick, ax, ay, next_sequence_));
+  if (!send_frame(frames)) return false;
   ++next_sequence_;
   ++stats_.inputs_sent;
   return true;
@@ -143,10 +165,29 @@ bool Client::send_ping(std::uint64_t nonce) {
   return send_frame(wire::encode_frame(convert::make_ping(nonce, now_ns())));
 }
 
+bool Client::request_full_state() {
+  if (state_ != ConnectionState::Connected) return false;
+  full_state_asked_ = true;
+  return send_frame(wire::encode_frame(convert::make_full_state_request()));
+}
+
+void Client::taken(const Snapshot& snapshot) {
+  ack_due_ = std::max(ack_due_, snapshot.tick);
+  ack_pending_ = true;
+}
+
+bool Client::flush_ack() {
+  if (!ack_pending_ || state_ != ConnectionState::Connected) return true;
+  ack_pending_ = false;
+  ++stats_.acks_sent;
+  return send_frame(wire::encode_frame(convert::make_ack(ack_due_)));
+}
+
 std::optional<Snapshot> Client::next_snapshot(std::chrono::milliseconds timeout) {
   if (!wait_until(Wait::Snapshot, timeout)) return std::nullopt;
   Snapshot snapshot = std::move(snapshots_.front());
   snapshots_.pop_front();
+  taken(snapshot);
   return snapshot;
 }
 
@@ -159,6 +200,7 @@ std::optional<Snapshot> Client::newest_snapshot(std::chrono::milliseconds timeou
   if (!wait_until(Wait::Snapshot, timeout)) return std::nullopt;
   Snapshot snapshot = std::move(snapshots_.back());
   snapshots_.clear();
+  taken(snapshot);
   return snapshot;
 }
 
@@ -198,6 +240,7 @@ bool Client::has(Wait what) const {
 }
 
 bool Client::wait_until(Wait what, std::chrono::milliseconds timeout) {
+  if (io_ && !flush_ack()) return has(what);
   if (has(what)) return true;
   if (!io_ || state_ != ConnectionState::Connected) return false;
   const auto deadline = Clock::now() + timeout;
@@ -275,24 +318,20 @@ void Client::handle_frame(const std::string& frame) {
         return;
       }
       welcome_ = convert::from_wire(message.welcome());
+      held_ = std::make_unique<Held>();
+      held_->predictor =
+          wire::Predictor(welcome_.tick_rate, welcome_.gravity.x, welcome_.gravity.y);
+      held_->quantum = {welcome_.view.position_precision, welcome_.view.velocity_precision};
+      held_->encoding = welcome_.view.encoding;
       state_ = ConnectionState::Connected;
       return;
-    case Kind::kSnapshot: {
+    case Kind::kSnapshot:
       if (state_ != ConnectionState::Connected) {
         fail(ConnectionState::ProtocolError, "server sent a Snapshot before Welcome");
         return;
       }
-      Snapshot snapshot = convert::from_wire(message.snapshot(), welcome_.body_id);
-      snapshot.received_at = Clock::now();
-      snapshot.wire_bytes = frame.size() + varint_size(frame.size());
-      ++stats_.snapshots_received;
-      if (snapshots_.size() >= config_.max_buffered_snapshots) {
-        snapshots_.pop_front();
-        ++stats_.snapshots_dropped;
-      }
-      snapshots_.push_back(std::move(snapshot));
+      on_snapshot(message.snapshot(), frame.size() + varint_size(frame.size()));
       return;
-    }
     case Kind::kError: {
       ServerError error = convert::from_wire(message.error());
       ++stats_.errors_received;
@@ -314,6 +353,58 @@ void Client::handle_frame(const std::string& frame) {
       // A kind newer than this client: ignored, as proto3 intends.
       return;
   }
+}
+
+void Client::on_snapshot(const physics::wire::Snapshot& message, std::size_t wire_bytes) {
+  Held& held = *held_;
+  Snapshot snapshot = convert::header_from_wire(message);
+  // The input fields come only when they change.
+  if (message.has_applied_input()) held.has_applied_input = true;
+  if (message.last_applied_input_tick() != 0) {
+    held.last_applied_input_tick = message.last_applied_input_tick();
+  }
+  snapshot.has_applied_input = held.has_applied_input;
+  snapshot.last_applied_input_tick = held.last_applied_input_tick;
+  if (held.encoding == Encoding::Full) {
+    snapshot.bodies.reserve(static_cast<std::size_t>(message.bodies_size()));
+    for (const auto& body : message.bodies()) {
+      snapshot.bodies.push_back({body.body_id(), {body.x(), body.y()}, {body.vx(), body.vy()}});
+    }
+    snapshot.records = snapshot.bodies.size();
+  } else {
+    const std::string problem = held.reconstruction.apply(message, held.predictor, held.quantum);
+    if (!problem.empty()) {
+      fail(ConnectionState::ProtocolError,
+           "server sent a snapshot that does not apply: " + problem);
+      return;
+    }
+    snapshot.records = static_cast<std::size_t>(message.quantized().id_gaps_size() +
+                                                message.exact().id_gaps_size());
+    const auto& bodies = held.reconstruction.bodies();
+    snapshot.bodies.reserve(bodies.size());
+    for (const wire::PredictedBody& b : bodies) {
+      snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
+    }
+    if (message.full()) {
+      full_state_asked_ = false;
+      ++stats_.full_states_received;
+    }
+    snapshot.in_sync = held.reconstruction.hash() == message.view_hash();
+    if (!snapshot.in_sync) {
+      ++stats_.desyncs;
+      if (!full_state_asked_ && !request_full_state()) return;
+    }
+  }
+  if (const BodyState* own = snapshot.find(welcome_.body_id)) snapshot.own = *own;
+  snapshot.received_at = Clock::now();
+  snapshot.wire_bytes = wire_bytes;
+  ++stats_.snapshots_received;
+  stats_.records_received += snapshot.records;
+  if (snapshots_.size() >= config_.max_buffered_snapshots) {
+    snapshots_.pop_front();
+    ++stats_.snapshots_dropped;
+  }
+  snapshots_.push_back(std::move(snapshot));
 }
 
 bool Client::send_frame(const std::string& frame) {

@@ -24,7 +24,9 @@ ShapeType shape_type(pb::ShapeType type) {
 static_assert(static_cast<int>(ErrorCode::NoSpawn) == pb::ERROR_NO_SPAWN);
 static_assert(static_cast<int>(ErrorCode::TooSlow) == pb::ERROR_TOO_SLOW);
 static_assert(static_cast<int>(ErrorCode::ProtocolVersion) == pb::ERROR_PROTOCOL_VERSION);
+static_assert(static_cast<int>(ErrorCode::RateLimited) == pb::ERROR_RATE_LIMITED);
 static_assert(kProtocolVersion == pb::PROTOCOL_VERSION_CURRENT);
+static_assert(static_cast<int>(Encoding::Full) == pb::ENCODING_FULL);
 
 }  // namespace
 
@@ -56,31 +58,68 @@ Welcome from_wire(const pb::Welcome& message) {
   welcome.lockstep = message.lockstep();
   welcome.max_ticks_ahead = message.max_ticks_ahead();
   welcome.scene_name = message.scene_name();
+  welcome.view = from_wire(message.view());
+  welcome.max_players = message.max_players();
   return welcome;
 }
 
-Snapshot from_wire(const pb::Snapshot& message, std::uint64_t own_body) {
+Snapshot header_from_wire(const pb::Snapshot& message) {
   Snapshot snapshot;
   snapshot.tick = message.tick();
   snapshot.state_hash = message.state_hash();
-  snapshot.bodies.reserve(static_cast<std::size_t>(message.bodies_size()));
-  for (const auto& body : message.bodies()) {
-    BodyState state{body.body_id(), {body.x(), body.y()}, {body.vx(), body.vy()}};
-    if (state.body_id == own_body) snapshot.own = state;
-    snapshot.bodies.push_back(state);
-  }
-  snapshot.has_applied_input = message.has_applied_input();
-  snapshot.last_applied_input_tick = message.last_applied_input_tick();
   snapshot.added.reserve(static_cast<std::size_t>(message.added_size()));
   for (const auto& shape : message.added()) snapshot.added.push_back(from_wire(shape));
   snapshot.removed.assign(message.removed().begin(), message.removed().end());
+  snapshot.full = message.full();
+  snapshot.view_hash = message.view_hash();
   return snapshot;
+}
+
+View from_wire(const pb::ViewRequest& message) {
+  View view;
+  view.encoding = static_cast<Encoding>(message.encoding());
+  view.position_precision = message.position_precision();
+  view.velocity_precision = message.velocity_precision();
+  view.position_tolerance = message.position_tolerance();
+  view.velocity_tolerance = message.velocity_tolerance();
+  view.snapshot_interval = message.snapshot_interval();
+  view.window = message.window();
+  if (message.has_interest_radius()) view.interest_radius = message.interest_radius();
+  if (message.has_interest_rect()) {
+    const auto& r = message.interest_rect();
+    view.interest_rect = Rect{r.min_x(), r.min_y(), r.max_x(), r.max_y()};
+  }
+  view.byte_budget = message.byte_budget();
+  view.state_hash = message.state_hash();
+  return view;
+}
+
+pb::ViewRequest to_wire(const ViewRequest& request) {
+  pb::ViewRequest view;
+  view.set_encoding(static_cast<pb::Encoding>(request.encoding));
+  if (request.position_precision) view.set_position_precision(*request.position_precision);
+  if (request.velocity_precision) view.set_velocity_precision(*request.velocity_precision);
+  if (request.position_tolerance) view.set_position_tolerance(*request.position_tolerance);
+  if (request.velocity_tolerance) view.set_velocity_tolerance(*request.velocity_tolerance);
+  if (request.snapshot_interval) view.set_snapshot_interval(*request.snapshot_interval);
+  if (request.window) view.set_window(*request.window);
+  if (request.interest_radius) view.set_interest_radius(*request.interest_radius);
+  if (request.interest_rect) {
+    auto* r = view.mutable_interest_rect();
+    r->set_min_x(request.interest_rect->min_x);
+    r->set_min_y(request.interest_rect->min_y);
+    r->set_max_x(request.interest_rect->max_x);
+    r->set_max_y(request.interest_rect->max_y);
+  }
+  if (request.byte_budget) view.set_byte_budget(*request.byte_budget);
+  view.set_state_hash(request.state_hash);
+  return view;
 }
 
 ServerError from_wire(const pb::Error& message) {
   ServerError error;
   error.raw_code = static_cast<std::uint32_t>(message.code());
-  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::NoSpawn)
+  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::RateLimited)
                    ? static_cast<ErrorCode>(error.raw_code)
                    : ErrorCode::Unspecified;
   error.message = message.message();
@@ -93,12 +132,25 @@ Pong from_wire(const pb::Pong& message) {
 }
 
 pb::ClientMessage make_hello(std::uint32_t protocol_version, const std::string& name,
-                             const std::string& token) {
+                             const std::string& token, const ViewRequest& view) {
   pb::ClientMessage message;
   auto* hello = message.mutable_hello();
   hello->set_protocol_version(protocol_version);
   hello->set_client_name(name);
   if (!token.empty()) hello->set_access_token(token);
+  *hello->mutable_view() = to_wire(view);
+  return message;
+}
+
+pb::ClientMessage make_ack(std::uint64_t tick) {
+  pb::ClientMessage message;
+  message.mutable_ack()->set_tick(tick);
+  return message;
+}
+
+pb::ClientMessage make_full_state_request() {
+  pb::ClientMessage message;
+  message.mutable_full_state_request();
   return message;
 }
 

@@ -7,14 +7,18 @@
 namespace client::convert {
 
 Welcome from_wire(const physics::wire::Welcome& message);
-// `own_body` fills Snapshot::own when that body is present.
-Snapshot from_wire(const physics::wire::Snapshot& message, std::uint64_t own_body);
+// The snapshot's header and shapes; the bodies come from the client's reconstruction.
+Snapshot header_from_wire(const physics::wire::Snapshot& message);
+View from_wire(const physics::wire::ViewRequest& message);
+physics::wire::ViewRequest to_wire(const ViewRequest& request);
 ServerError from_wire(const physics::wire::Error& message);
 Pong from_wire(const physics::wire::Pong& message);
 BodyShape from_wire(const physics::wire::BodyShape& message);
 
 physics::wire::ClientMessage make_hello(std::uint32_t protocol_version, const std::string& name,
-                                        const std::string& token);
+                                        const std::string& token, const ViewRequest& view);
+physics::wire::ClientMessage make_ack(std::uint64_t tick);
+physics::wire::ClientMessage make_full_state_request();
 physics::wire::ClientMessage make_input(std::uint64_t tick, double ax, double ay,
                                         std::uint64_t sequence);
 physics::wire::ClientMessage make_ping(std::uint64_t nonce, std::uint64_t client_time_ns);

@@ -18,6 +18,7 @@ struct BotResult {
   std::vector<double> latencies_ms;
   std::uint64_t bytes = 0;
   std::uint64_t snapshots = 0;
+  std::uint64_t records = 0;
   std::uint64_t inputs = 0;
   std::uint64_t unanswered = 0;
   std::uint64_t dropped = 0;
@@ -44,6 +45,7 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
   const auto end = begin + config.duration;
   const std::uint64_t bytes_before = bot.stats().bytes_received;
   const std::uint64_t snapshots_before = bot.stats().snapshots_received;
+  const std::uint64_t records_before = bot.stats().records_received;
   std::deque<PendingInput> pending;
   std::uint64_t last_input_tick = 0;
   // Bots circle at different phases so that they do not all push the same way.
@@ -65,6 +67,7 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
       result.latencies_ms.push_back(latency.count());
       pending.pop_front();
     }
+    if (config.still) continue;
     const std::uint64_t tick = snapshot->tick + config.input_lead;
     if (tick <= last_input_tick) continue;  // already sent (we were behind)
     const double angle = phase + 2.0 * M_PI * static_cast<double>(tick % 120) / 120.0;
@@ -81,6 +84,7 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
   result.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
   result.bytes = bot.stats().bytes_received - bytes_before;
   result.snapshots = bot.stats().snapshots_received - snapshots_before;
+  result.records = bot.stats().records_received - records_before;
   result.dropped = bot.stats().snapshots_dropped;
   result.unanswered = pending.size();
   bot.disconnect("load run finished");
@@ -130,6 +134,9 @@ LoadReport run_load(const LoadConfig& config) {
     report.inputs_sent += result.inputs;
     report.inputs_unanswered += result.unanswered;
     report.snapshots_dropped += result.dropped;
+    report.records += result.records;
+    report.snapshots += result.snapshots;
+    report.bytes += result.bytes;
   }
   report.latency_samples = latencies.size();
   report.latency_median_ms = quantile(latencies, 0.5);

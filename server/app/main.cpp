@@ -71,11 +71,11 @@ int main(int argc, char** argv) {
                  "and the connection is closed")
       ->capture_default_str()
       ->check(CLI::Range(std::size_t{64}, std::size_t{1} << 30));
-  app.add_option("--max-queued-snapshots", config.max_queued_snapshots,
-                 "Snapshots queued per client; a slow reader gets the newest, the oldest "
-                 "unsent are dropped")
+  app.add_option("--max-snapshot-window", config.max_snapshot_window,
+                 "Largest window of unacknowledged snapshots a client may ask for; a client "
+                 "whose window is full skips ticks instead of queueing them")
       ->capture_default_str()
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1024}));
+      ->check(CLI::Range(1u, 256u));
   app.add_option("--idle-timeout-ms", idle_timeout_ms,
                  "Drop a client that sends nothing, or reads nothing, for this long "
                  "(clients without inputs send Ping)")

@@ -5,20 +5,6 @@
 
 namespace server {
 
-phys::Vec2 clamp_magnitude(phys::Vec2 a, double limit, bool* clamped) {
-  // hypot(x, y) itself overflows to infinity for components near DBL_MAX, so the
-  // direction is taken from a scaled copy whose largest component is 1.
-  const double largest = std::max(std::abs(a.x), std::abs(a.y));
-  if (clamped != nullptr) *clamped = false;
-  if (largest == 0.0) return a;
-  const phys::Vec2 scaled{a.x / largest, a.y / largest};
-  const double scaled_length = std::hypot(scaled.x, scaled.y);  // in [1, sqrt 2]
-  if (largest * scaled_length <= limit) return a;
-  if (clamped != nullptr) *clamped = true;
-  const double factor = limit / scaled_length;
-  return {scaled.x * factor, scaled.y * factor};
-}
-
 InputCheck check_input(std::uint64_t tick, phys::Vec2 acceleration, std::uint64_t current_tick,
                        std::uint64_t max_ticks_ahead, double max_acceleration) {
   InputCheck check;
@@ -31,7 +17,7 @@ InputCheck check_input(std::uint64_t tick, phys::Vec2 acceleration, std::uint64_
     check.verdict = InputVerdict::TooFarAhead;
     return check;
   }
-  check.acceleration = clamp_magnitude(acceleration, max_acceleration, &check.clamped);
+  check.acceleration = phys::clamp_length(acceleration, max_acceleration, &check.clamped);
   if (tick <= current_tick) {
     check.verdict = InputVerdict::Late;
     check.apply_at = current_tick + 1;

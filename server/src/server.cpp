@@ -3,12 +3,14 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <system_error>
 #include <utility>
 
 #include "server_impl.h"
 #include "wire/messages.h"
+#include "wire/view_settings.h"
 
 namespace server {
 namespace {
@@ -24,9 +26,11 @@ void check_config(const ServerConfig& config) {
   if (config.max_message_bytes < 64) {
     throw std::invalid_argument("max_message_bytes must be at least 64");
   }
-  if (config.max_queued_snapshots < 1) {
-    throw std::invalid_argument("max_queued_snapshots must be at least 1");
+  if (config.max_snapshot_window < 1 || config.max_snapshot_window > wire::kMaxWindow) {
+    throw std::invalid_argument("max_snapshot_window must be in [1, " +
+                                std::to_string(wire::kMaxWindow) + "]");
   }
+  if (config.heartbeat.count() <= 0) throw std::invalid_argument("heartbeat must be > 0");
   if (config.idle_timeout.count() <= 0) throw std::invalid_argument("idle_timeout must be > 0");
   if (config.lockstep_timeout.count() <= 0) {
     throw std::invalid_argument("lockstep_timeout must be > 0");
@@ -54,6 +58,12 @@ bool same_token(const std::string& given, const std::string& expected) {
     difference |= static_cast<unsigned char>(given[i] ^ expected[i % (expected.size() + 1)]);
   }
   return difference == 0;
+}
+
+// Heartbeats in ticks: at least one.
+std::uint64_t heartbeat_ticks(std::chrono::milliseconds heartbeat, double tick_rate) {
+  const double ticks = std::round(static_cast<double>(heartbeat.count()) * tick_rate / 1000.0);
+  return ticks < 1.0 ? 1 : static_cast<std::uint64_t>(ticks);
 }
 
 SimulationOptions simulation_options(const ServerConfig& config) {
@@ -91,6 +101,8 @@ const char* to_string(DropReason reason) {
       return "too slow (not reading)";
     case DropReason::ShuttingDown:
       return "server shutting down";
+    case DropReason::InvalidView:
+      return "invalid view settings";
   }
   return "unknown";
 }
@@ -109,9 +121,12 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
       lockstep_timer_(io_),
       housekeeping_timer_(io_),
       accept_retry_timer_(io_),
-      gate_(config_.lockstep_timeout) {
+      gate_(config_.lockstep_timeout),
+      feeds_(wire::Predictor(simulation_.tick_rate(), simulation_.world().settings().gravity.x,
+                             simulation_.world().settings().gravity.y),
+             heartbeat_ticks(config_.heartbeat, simulation_.tick_rate()), config_.lockstep) {
   limits_.max_message_bytes = config_.max_message_bytes;
-  limits_.max_queued_snapshots = config_.max_queued_snapshots;
+  limits_.max_queued_snapshots = config_.max_snapshot_window + 1;
   limits_.idle_timeout = config_.idle_timeout;
   limits_.close_linger = config_.close_linger;
   limits_.socket_send_buffer_bytes = config_.socket_send_buffer_bytes;
@@ -200,6 +215,7 @@ void Server::Impl::on_closed(Session& session, DropReason reason) {
   const std::uint32_t id = session.id();
   if (session.joined()) {
     simulation_.leave(id);
+    feeds_.leave(id);
     --joined_count_;
     spdlog::info("client {} '{}' ({}) left: {}", id, session.name(), session.peer(),
                  to_string(reason));
@@ -220,10 +236,6 @@ void Server::Impl::on_bytes(std::size_t sent, std::size_t received) {
     s.bytes_sent += sent;
     s.bytes_received += received;
   });
-}
-
-void Server::Impl::on_snapshot_dropped() {
-  update_stats([](ServerStats& s) { ++s.dropped_snapshots; });
 }
 
 void Server::Impl::publish_connection_counts() {
@@ -259,6 +271,24 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       session.send(reply);
       return;
     }
+    case Kind::kAck:
+      if (!session.joined()) {
+        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
+                                 "Ack before Hello: the first message must be Hello",
+                                 DropReason::UnexpectedMessage);
+        return;
+      }
+      on_ack(session, message.ack());
+      return;
+    case Kind::kFullStateRequest:
+      if (!session.joined()) {
+        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
+                                 "FullStateRequest before Hello: the first message must be Hello",
+                                 DropReason::UnexpectedMessage);
+        return;
+      }
+      on_full_state_request(session);
+      return;
     case Kind::kBye:
       spdlog::info("client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
       session.close_now(DropReason::ClientBye);
@@ -295,6 +325,13 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
                              DropReason::BadToken);
     return;
   }
+  wire::ViewSettings view;
+  if (const std::string problem =
+          wire::resolve_view(hello.view(), config_.max_snapshot_window, view);
+      !problem.empty()) {
+    session.close_with_error(physics::wire::ERROR_INVALID_VIEW, problem, DropReason::InvalidView);
+    return;
+  }
   if (joined_count_ >= static_cast<std::size_t>(config_.max_clients)) {
     session.close_with_error(
         physics::wire::ERROR_SERVER_FULL,
@@ -309,11 +346,31 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
     return;
   }
   session.set_joined(name);
+  feeds_.join(session.id(), view, body->packed());
   ++joined_count_;
   publish_connection_counts();
   spdlog::info("client {} '{}' ({}) joined at tick {} with body {}", session.id(), name,
                session.peer(), simulation_.current_tick(), body->packed());
-  session.send(make_welcome(simulation_, session.id(), *body, config_.lockstep));
+  session.send(make_welcome(simulation_, session.id(), *body, config_.lockstep, wire::to_wire(view),
+                            static_cast<std::uint32_t>(config_.max_clients)));
+}
+
+void Server::Impl::on_ack(Session& session, const physics::wire::Ack& ack) {
+  if (feeds_.ack(session.id(), ack.tick()) == AckResult::Accepted) return;
+  update_stats([](ServerStats& s) { ++s.invalid_acks; });
+  session.send(wire::make_error(physics::wire::ERROR_INVALID_ACK,
+                                "Ack for tick " + std::to_string(ack.tick()) +
+                                    ", after the newest snapshot sent to this client; ignored",
+                                false));
+}
+
+void Server::Impl::on_full_state_request(Session& session) {
+  if (feeds_.request_full_state(session.id()) == FullStateResult::Accepted) return;
+  update_stats([](ServerStats& s) { ++s.rate_limited; });
+  session.send(wire::make_error(physics::wire::ERROR_RATE_LIMITED,
+                                "a full state is already on its way to this client; the "
+                                "request is merged with it",
+                                false));
 }
 
 void Server::Impl::on_input(Session& session, const physics::wire::Input& input) {
@@ -430,34 +487,53 @@ void Server::Impl::try_lockstep() {
 TickResult Server::Impl::run_one_tick() {
   const auto started = std::chrono::steady_clock::now();
   TickResult result = simulation_.step_tick();
-  const auto snapshot =
-      encode_snapshot(simulation_.world(), result.tick, simulation_.take_changes());
-  broadcast(snapshot);
+  const BodyChanges changes = simulation_.take_changes();
+  for (const phys::BodyId id : changes.added) feeds_.note_added(id.packed());
+  for (const std::uint64_t id : changes.removed) feeds_.note_removed(id);
+  TruthFrame frame =
+      read_truth(simulation_.world(), result.tick, &previous_frame_, simulation_.dt());
+  broadcast(frame);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  const FeedStats& feed = feeds_.stats();
   update_stats([&](ServerStats& s) {
     ++s.ticks_stepped;
     s.current_tick = result.tick;
-    s.last_state_hash = snapshot->state_hash;
+    s.last_state_hash = frame.state_hash;
     s.last_tick_seconds = seconds;
     s.total_tick_seconds += seconds;
     if (seconds > s.max_tick_seconds) s.max_tick_seconds = seconds;
+    s.skipped_snapshots = feed.skipped;
+    s.snapshots_sent = feed.snapshots;
+    s.snapshot_records = feed.records;
+    s.full_states = feed.full_states;
+    s.view_updates = feed.views_updated;
+    s.views = feeds_.view_count();
+    s.max_view_error = feed.max_position_error;
   });
+  previous_frame_ = std::move(frame);
   return result;
 }
 
-void Server::Impl::broadcast(const std::shared_ptr<const EncodedSnapshot>& snapshot) {
-  // A copy: a session that turns out too slow closes, and leaves the map, mid-loop.
-  std::vector<std::shared_ptr<Session>> targets;
-  targets.reserve(sessions_.size());
-  for (const auto& [id, session] : sessions_) {
-    if (session->joined() && !session->closing()) targets.push_back(session);
-  }
+void Server::Impl::broadcast(const TruthFrame& frame) {
+  std::vector<FeedOutput> outputs =
+      feeds_.after_tick(frame, simulation_.world(), [this](FeedClient client) {
+        const ClientInputs* inputs = simulation_.inputs_of(client);
+        ClientFields fields;
+        if (inputs != nullptr) {
+          fields.last_applied_input_tick = inputs->last_applied_tick();
+          fields.has_applied_input = inputs->has_applied();
+        }
+        return fields;
+      });
   std::size_t peak = 0;
-  for (const auto& session : targets) {
-    const ClientInputs* inputs = simulation_.inputs_of(session->id());
-    if (inputs == nullptr || session->closing()) continue;
-    session->send_snapshot(snapshot, inputs->last_applied_tick(), inputs->has_applied());
+  for (FeedOutput& out : outputs) {
+    const auto it = sessions_.find(out.client);
+    if (it == sessions_.end()) continue;
+    // Held by a copy: a session that turns out too slow closes, and leaves the map.
+    const std::shared_ptr<Session> session = it->second;
+    if (session->closing()) continue;
+    session->send_snapshot(std::move(out.shared), std::move(out.tail));
     peak = std::max(peak, session->queued_snapshots());
   }
   update_stats(

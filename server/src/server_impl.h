@@ -17,6 +17,8 @@
 #include "server/server.h"
 #include "server/simulation.h"
 #include "session.h"
+#include "snapshot_feeds.h"
+#include "truth_frame.h"
 
 namespace server {
 
@@ -34,7 +36,6 @@ class Server::Impl final : public SessionHost {
   void on_message(Session& session, physics::wire::ClientMessage& message) override;
   void on_closed(Session& session, DropReason reason) override;
   void on_bytes(std::size_t sent, std::size_t received) override;
-  void on_snapshot_dropped() override;
 
  private:
   void do_accept();
@@ -44,12 +45,14 @@ class Server::Impl final : public SessionHost {
   void schedule_lockstep();
   void try_lockstep();
   TickResult run_one_tick();
-  void broadcast(const std::shared_ptr<const EncodedSnapshot>& snapshot);
+  void broadcast(const TruthFrame& frame);
   void arm_housekeeping();
   void begin_shutdown();
 
   void on_hello(Session& session, const physics::wire::Hello& hello);
   void on_input(Session& session, const physics::wire::Input& input);
+  void on_ack(Session& session, const physics::wire::Ack& ack);
+  void on_full_state_request(Session& session);
 
   template <typename Update>
   void update_stats(Update&& update) {
@@ -75,6 +78,8 @@ class Server::Impl final : public SessionHost {
   std::optional<phys::FixedTimestep> timestep_;
   std::chrono::steady_clock::time_point next_tick_due_;
   LockstepGate gate_;
+  SnapshotFeeds feeds_;
+  TruthFrame previous_frame_;
 
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
   std::size_t joined_count_ = 0;

@@ -110,31 +110,17 @@ void Session::send(const physics::wire::ServerMessage& message) {
   enqueue(std::move(item));
 }
 
-void Session::send_snapshot(std::shared_ptr<const EncodedSnapshot> snapshot,
-                            std::uint64_t last_applied_input_tick, bool has_applied_input) {
+void Session::send_snapshot(std::shared_ptr<const std::string> shared, std::string tail) {
   if (closing_ || closed_) return;
-  if (waiting_snapshots_ >= limits_.max_queued_snapshots) drop_oldest_waiting_snapshot();
-  if (closing_) return;
+  if (waiting_snapshots_ >= limits_.max_queued_snapshots) {
+    close_now(DropReason::TooSlow);
+    return;
+  }
   Outgoing item;
-  item.snapshot = std::move(snapshot);
-  item.last_applied_input_tick = last_applied_input_tick;
-  item.has_applied_input = has_applied_input;
+  item.snapshot = std::move(shared);
+  item.tail = std::move(tail);
   ++waiting_snapshots_;
   enqueue(std::move(item));
-}
-
-void Session::drop_oldest_waiting_snapshot() {
-  for (auto it = queue_.begin(); it != queue_.end(); ++it) {
-    if (!it->snapshot) continue;
-    carried_changes_ += it->snapshot->changes;
-    queue_.erase(it);
-    --waiting_snapshots_;
-    host_.on_snapshot_dropped();
-    break;
-  }
-  // Carried changes only grow when bodies join or leave while this client reads
-  // nothing; past one message's worth the client is hopelessly behind.
-  if (carried_changes_.size() > limits_.max_message_bytes) close_now(DropReason::TooSlow);
 }
 
 void Session::enqueue(Outgoing item) {
@@ -155,10 +141,8 @@ void Session::do_write() {
   std::size_t count = 1;
   if (item.snapshot) {
     --waiting_snapshots_;
-    item.tail = std::exchange(carried_changes_, std::string()) +
-                encode_client_fields(item.last_applied_input_tick, item.has_applied_input);
-    item.bytes = snapshot_frame_header(item.snapshot->shared.size() + item.tail.size());
-    item.buffers[1] = asio::buffer(item.snapshot->shared);
+    item.bytes = snapshot_frame_header(item.snapshot->size() + item.tail.size());
+    item.buffers[1] = asio::buffer(*item.snapshot);
     item.buffers[2] = asio::buffer(item.tail);
     count = 3;
   }
@@ -232,7 +216,6 @@ void Session::finish(DropReason reason) {
   socket_.close(ignored);
   queue_.clear();
   waiting_snapshots_ = 0;
-  carried_changes_.clear();
   host_.on_closed(*this, reason);
 }
 

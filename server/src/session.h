@@ -1,8 +1,9 @@
 #pragma once
 // One TCP connection: a read chain (bytes -> FrameReader -> parsed ClientMessage ->
-// host) and one write queue that nothing else writes around. Snapshots in the
-// queue are bounded: past max_queued_snapshots the oldest unsent one is dropped and
-// its body additions/removals are carried into the next one sent. Control messages
+// host) and one write queue that nothing else writes around. Snapshots are never
+// dropped here: each builds on the one before (docs/PROTOCOL.md, section 5), and the
+// snapshot feeds send a client no more than its window of unacknowledged ones, so
+// the queue (and the kernel's buffers) hold at most that. Control messages
 // (Welcome, Error, Pong) are bounded too: a client that lets them pile up is too
 // slow and is dropped. Everything runs on the server's single io_context thread.
 #include <array>
@@ -29,7 +30,6 @@ class SessionHost {
   // Called once, after the socket is closed.
   virtual void on_closed(Session& session, DropReason reason) = 0;
   virtual void on_bytes(std::size_t sent, std::size_t received) = 0;
-  virtual void on_snapshot_dropped() = 0;
 
  protected:
   ~SessionHost() = default;
@@ -37,7 +37,8 @@ class SessionHost {
 
 struct SessionLimits {
   std::size_t max_message_bytes = 1u << 20;
-  std::size_t max_queued_snapshots = 4;
+  // More queued snapshots than this means the feeds' window bound was broken.
+  std::size_t max_queued_snapshots = 257;
   std::size_t max_queued_control = 256;
   std::chrono::milliseconds idle_timeout{10000};
   std::chrono::milliseconds close_linger{1000};
@@ -53,8 +54,10 @@ class Session : public std::enable_shared_from_this<Session> {
   void start();
 
   void send(const physics::wire::ServerMessage& message);
-  void send_snapshot(std::shared_ptr<const EncodedSnapshot> snapshot,
-                     std::uint64_t last_applied_input_tick, bool has_applied_input);
+  // `shared`: the view's bytes, shared by every client of the view; `tail`: this
+  // client's own fields. Both are one Snapshot's encodings, so that their
+  // concatenation parses as their merge.
+  void send_snapshot(std::shared_ptr<const std::string> shared, std::string tail);
   // Sends a fatal Error, stops reading, closes once it is written (or after
   // close_linger at the latest).
   void close_with_error(physics::wire::ErrorCode code, const std::string& text, DropReason reason);
@@ -83,10 +86,8 @@ class Session : public std::enable_shared_from_this<Session> {
  private:
   struct Outgoing {
     std::string bytes;  // a whole frame, or (snapshots) the header built at write time
-    std::shared_ptr<const EncodedSnapshot> snapshot;  // null for control messages
-    std::string tail;  // snapshots: carried changes + this client's fields
-    std::uint64_t last_applied_input_tick = 0;
-    bool has_applied_input = false;
+    std::shared_ptr<const std::string> snapshot;  // null for control messages
+    std::string tail;                             // snapshots: this client's own fields
     // What async_write reads from until it completes: the header, the shared
     // bytes, the tail. Lives here, in the heap-held in-flight item, so that it stays
     // put however long the write takes (a local array would die with do_write).
@@ -98,7 +99,6 @@ class Session : public std::enable_shared_from_this<Session> {
   void begin_draining();
   void handle_frames();
   void enqueue(Outgoing item);
-  void drop_oldest_waiting_snapshot();
   void do_write();
   void finish(DropReason reason);
 
@@ -117,7 +117,6 @@ class Session : public std::enable_shared_from_this<Session> {
   bool reading_ = false;
   bool draining_ = false;              // closing: Error written, FIN sent, discarding input
   std::size_t waiting_snapshots_ = 0;  // snapshots in queue_
-  std::string carried_changes_;        // from dropped snapshots, for the next one
   bool joined_ = false;
   bool closing_ = false;
   bool closed_ = false;

@@ -9,16 +9,6 @@ namespace {
 // ServerMessage.snapshot is field 2, length-delimited: (2 << 3) | 2.
 constexpr char kSnapshotFieldTag = 0x12;
 
-void fill_changes(const phys::World& world, const BodyChanges& changes,
-                  physics::wire::Snapshot& snapshot) {
-  for (const phys::BodyId id : changes.added) {
-    if (const std::optional<phys::BodyState> body = world.body(id)) {
-      fill_body_shape(*body, *snapshot.add_added());
-    }
-  }
-  for (const std::uint64_t id : changes.removed) snapshot.add_removed(id);
-}
-
 }  // namespace
 
 void fill_body_shape(const phys::BodyState& body, physics::wire::BodyShape& shape) {
@@ -40,42 +30,6 @@ void fill_body_shape(const phys::BodyState& body, physics::wire::BodyShape& shap
   shape.mutable_friction()->set_y(body.friction.y);
 }
 
-std::shared_ptr<const EncodedSnapshot> encode_snapshot(const phys::World& world, std::uint64_t tick,
-                                                       const BodyChanges& changes) {
-  auto encoded = std::make_shared<EncodedSnapshot>();
-  encoded->tick = tick;
-  encoded->state_hash = world.state_hash();
-
-  physics::wire::Snapshot snapshot;
-  snapshot.set_tick(tick);
-  snapshot.set_state_hash(encoded->state_hash);
-  // for_each_body visits in ascending id order, which the protocol promises.
-  world.for_each_body([&](const phys::BodyState& body) {
-    if (body.motion != phys::Motion::Dynamic) return;
-    physics::wire::BodyState* state = snapshot.add_bodies();
-    state->set_body_id(body.id.packed());
-    state->set_x(body.position.x);
-    state->set_y(body.position.y);
-    state->set_vx(body.velocity.x);
-    state->set_vy(body.velocity.y);
-  });
-  if (!changes.empty()) {
-    physics::wire::Snapshot only_changes;
-    fill_changes(world, changes, only_changes);
-    encoded->changes = only_changes.SerializeAsString();
-    snapshot.MergeFrom(only_changes);
-  }
-  encoded->shared = snapshot.SerializeAsString();
-  return encoded;
-}
-
-std::string encode_client_fields(std::uint64_t last_applied_input_tick, bool has_applied_input) {
-  physics::wire::Snapshot fields;
-  fields.set_last_applied_input_tick(last_applied_input_tick);
-  fields.set_has_applied_input(has_applied_input);
-  return fields.SerializeAsString();
-}
-
 std::string snapshot_frame_header(std::size_t snapshot_bytes) {
   std::string length_of_snapshot;
   wire::append_varint_prefix(snapshot_bytes, length_of_snapshot);
@@ -88,7 +42,9 @@ std::string snapshot_frame_header(std::size_t snapshot_bytes) {
 }
 
 physics::wire::ServerMessage make_welcome(const Simulation& simulation, std::uint32_t client_id,
-                                          phys::BodyId body, bool lockstep) {
+                                          phys::BodyId body, bool lockstep,
+                                          const physics::wire::ViewRequest& view,
+                                          std::uint32_t max_players) {
   physics::wire::ServerMessage envelope;
   physics::wire::Welcome& welcome = *envelope.mutable_welcome();
   welcome.set_protocol_version(wire::kProtocolVersion);
@@ -106,6 +62,8 @@ physics::wire::ServerMessage make_welcome(const Simulation& simulation, std::uin
   welcome.set_max_ticks_ahead(static_cast<std::uint32_t>(
       std::min<std::uint64_t>(simulation.max_ticks_ahead(), UINT32_MAX)));
   welcome.set_scene_name(simulation.scene().name);
+  *welcome.mutable_view() = view;
+  welcome.set_max_players(max_players);
   return envelope;
 }
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <random>
@@ -31,7 +32,7 @@ class BadInput : public ::testing::Test {
  protected:
   void start(server::ServerConfig config = test_config(),
              scene::SceneDef scene = scene::default_scene()) {
-    max_queued_snapshots_ = config.max_queued_snapshots;
+    max_queued_snapshots_ = 12;  // the default window: no client holds more
     server_ = std::make_unique<RunningServer>(config, std::move(scene));
     bystander_ = std::make_unique<client::Client>(server_->client_config("bystander"));
     ASSERT_TRUE(bystander_->connect(3s)) << bystander_->last_error().to_string();
@@ -347,6 +348,97 @@ TEST_F(BadInput, NoMessageMovesAnyBodyButTheSendersOwn) {
   EXPECT_EQ(before->find(attacker.welcome().body_id), nullptr);
   EXPECT_GE(server_->stats().clamped_inputs, 1u);
   attacker.disconnect();
+}
+
+// Every view setting out of range is refused with ERROR_INVALID_VIEW, naming the
+// field, and the session is closed; the others are served on (TearDown).
+TEST_F(BadInput, ViewSettingsOutOfRangeAreRefusedNamingTheField) {
+  start();
+  struct Case {
+    const char* field;
+    std::function<void(pb::ViewRequest&)> set;
+  };
+  const std::vector<Case> cases = {
+      {"position_precision", [](pb::ViewRequest& v) { v.set_position_precision(0.0); }},
+      {"position_precision", [](pb::ViewRequest& v) { v.set_position_precision(-0.001); }},
+      {"velocity_precision", [](pb::ViewRequest& v) { v.set_velocity_precision(std::nan("")); }},
+      {"position_tolerance", [](pb::ViewRequest& v) { v.set_position_tolerance(1e-6); }},
+      {"snapshot_interval", [](pb::ViewRequest& v) { v.set_snapshot_interval(0); }},
+      {"snapshot_interval", [](pb::ViewRequest& v) { v.set_snapshot_interval(1000000000); }},
+      {"window", [](pb::ViewRequest& v) { v.set_window(0); }},
+      {"interest_radius", [](pb::ViewRequest& v) { v.set_interest_radius(1e308); }},
+      {"interest_radius", [](pb::ViewRequest& v) { v.set_interest_radius(-1.0); }},
+      {"interest_rect", [](pb::ViewRequest& v) { v.mutable_interest_rect()->set_max_x(-1.0); }},
+      {"byte_budget", [](pb::ViewRequest& v) { v.set_byte_budget(3); }},
+      {"encoding", [](pb::ViewRequest& v) { v.set_encoding(static_cast<pb::Encoding>(9)); }},
+  };
+  for (const Case& c : cases) {
+    RawPeer peer(server_->port());
+    pb::ClientMessage hello = hello_message("bad-view");
+    c.set(*hello.mutable_hello()->mutable_view());
+    ASSERT_TRUE(peer.send(hello));
+    auto error = peer.receive_error(3s);
+    ASSERT_TRUE(error.has_value()) << c.field;
+    EXPECT_EQ(error->code(), pb::ERROR_INVALID_VIEW) << c.field;
+    EXPECT_TRUE(error->fatal()) << c.field;
+    EXPECT_NE(error->message().find(c.field), std::string::npos) << error->message();
+    EXPECT_TRUE(peer.wait_closed(3s)) << c.field;
+  }
+}
+
+// Acks for ticks never sent, a flood of acks, and a full-state request every tick:
+// non-fatal Errors where the protocol says so, and the session goes on.
+TEST_F(BadInput, BadAcksFloodsOfAcksAndFullStateRequestsKeepTheSession) {
+  start();
+  client::Client peer(server_->client_config("acker"));
+  ASSERT_TRUE(peer.connect(3s)) << peer.last_error().to_string();
+  auto first = peer.next_snapshot(3s);
+  ASSERT_TRUE(first.has_value());
+  RawPeer raw(server_->port());
+  ASSERT_TRUE(raw.send(hello_message("raw-acker")));
+  auto welcome = raw.receive(3s);
+  ASSERT_TRUE(welcome && welcome->has_welcome());
+  pb::ClientMessage ack;
+  ack.mutable_ack()->set_tick(welcome->welcome().current_tick() + 1000000);
+  ASSERT_TRUE(raw.send(ack));
+  auto error = raw.receive_error(3s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(error->code(), pb::ERROR_INVALID_ACK);
+  EXPECT_FALSE(error->fatal());
+  // A flood of acks of a tick it was sent: each harmless and silent.
+  std::optional<pb::ServerMessage> got;
+  do {
+    got = raw.receive(3s);
+  } while (got && !got->has_snapshot());
+  ASSERT_TRUE(got.has_value());
+  ack.mutable_ack()->set_tick(got->snapshot().tick());
+  std::string flood;
+  for (int i = 0; i < 5000; ++i) flood += wire::encode_frame(ack);
+  ASSERT_TRUE(raw.send_bytes(flood));
+  // A full-state request every tick for a second: served or merged, some refused.
+  pb::ClientMessage request;
+  request.mutable_full_state_request();
+  std::uint64_t rate_limited = 0;
+  for (int i = 0; i < 60; ++i) {
+    ASSERT_TRUE(raw.send(request));
+    ASSERT_TRUE(raw.send(request));
+    if (auto e = raw.receive_error(100ms)) {
+      EXPECT_EQ(e->code(), pb::ERROR_RATE_LIMITED);
+      EXPECT_FALSE(e->fatal());
+      ++rate_limited;
+    }
+  }
+  EXPECT_GT(rate_limited, 0u);
+  EXPECT_GE(server_->stats().full_states, 2u);
+  EXPECT_FALSE(raw.closed());
+  raw.close();
+  // The well-behaved client is still in sync with the server's mirror of it.
+  auto later =
+      peer.wait_for_snapshot(3s, [&](const client::Snapshot& s) { return s.tick > first->tick; });
+  ASSERT_TRUE(later.has_value());
+  EXPECT_TRUE(later->in_sync);
+  EXPECT_EQ(peer.stats().desyncs, 0u);
+  peer.disconnect();
 }
 
 }  // namespace

@@ -12,6 +12,13 @@ RunningServer::~RunningServer() {
   thread_.join();
 }
 
+client::ClientConfig RunningServer::exact_client_config(const std::string& name) const {
+  client::ClientConfig config = client_config(name);
+  config.view.encoding = client::Encoding::Exact;
+  config.view.state_hash = true;
+  return config;
+}
+
 client::ClientConfig RunningServer::client_config(const std::string& name) const {
   client::ClientConfig config;
   config.host = "127.0.0.1";

@@ -35,6 +35,9 @@ class RunningServer {
   server::Server& get() { return server_; }
   // A client config pointing at this server.
   client::ClientConfig client_config(const std::string& name = "test-client") const;
+  // The same, asking for exact state and the world's state hash in every snapshot:
+  // for tests that compare a networked run with an in-process one bit for bit.
+  client::ClientConfig exact_client_config(const std::string& name = "test-client") const;
 
  private:
   server::Server server_;

@@ -32,7 +32,7 @@ TEST(Kinematics, InputMovesOwnBodyAsTheFormulasSay) {
   config.lockstep_timeout = 10s;  // one client: every tick waits for our input only
   RunningServer server(config, scene);
 
-  client::Client player(server.client_config("kinematics"));
+  client::Client player(server.exact_client_config("kinematics"));
   ASSERT_TRUE(player.connect(3s)) << player.last_error().to_string();
   const client::Welcome welcome = player.welcome();
   ASSERT_TRUE(welcome.lockstep);

@@ -29,8 +29,8 @@ void run_lockstep_against_reference(const scene::SceneDef& scene, std::size_t cl
 
   std::vector<std::unique_ptr<client::Client>> players;
   for (std::size_t k = 0; k < clients; ++k) {
-    players.push_back(
-        std::make_unique<client::Client>(server.client_config("lockstep-" + std::to_string(k))));
+    players.push_back(std::make_unique<client::Client>(
+        server.exact_client_config("lockstep-" + std::to_string(k))));
     ASSERT_TRUE(players.back()->connect(3s)) << players.back()->last_error().to_string();
   }
   // Nobody has sent an input yet, so every client joined at the same tick.
@@ -81,8 +81,8 @@ TEST(Lockstep, NetworkRunIsReproducible) {
     server::ServerConfig config = test_config(true);
     config.lockstep_timeout = 10s;
     RunningServer server(config, scene::default_scene());
-    client::Client a(server.client_config("a"));
-    client::Client b(server.client_config("b"));
+    client::Client a(server.exact_client_config("a"));
+    client::Client b(server.exact_client_config("b"));
     ASSERT_TRUE(a.connect(3s));
     ASSERT_TRUE(b.connect(3s));
     const std::uint64_t start = a.welcome().current_tick;

@@ -4,10 +4,13 @@
 // server's own time per tick from stats(): the mean from total_tick_seconds, the
 // p99 from last_tick_seconds sampled whenever exactly one tick passed.
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -49,76 +52,173 @@ TickSamples sample_ticks(const server::Server& server, const std::atomic<bool>& 
         (last.total_tick_seconds - first.total_tick_seconds) / static_cast<double>(samples.ticks);
   }
   samples.dropped_steps = last.dropped_steps - first.dropped_steps;
-  samples.dropped_snapshots = last.dropped_snapshots - first.dropped_snapshots;
+  samples.dropped_snapshots = last.skipped_snapshots - first.skipped_snapshots;
   samples.late_inputs = last.late_inputs - first.late_inputs;
   return samples;
+}
+
+struct Run {
+  std::string scene_label;
+  scene::SceneDef scene;
+};
+
+bool parse_encoding(const std::string& name, client::Encoding& out) {
+  if (name == "predicted")
+    out = client::Encoding::Predicted;
+  else if (name == "exact")
+    out = client::Encoding::Exact;
+  else if (name == "full")
+    out = client::Encoding::Full;
+  else
+    return false;
+  return true;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"physics-netbench: server time per tick, input latency and bandwidth with N bots"};
-  std::string scene_file;
+  CLI::App app{
+      "physics-netbench: bandwidth, bits per body, reconstruction error, server time per tick "
+      "and input latency with N bots, per scene and snapshot encoding"};
+  std::vector<std::string> scene_files{"default"};
   std::vector<int> bot_counts{1, 8, 32};
+  std::vector<std::string> encodings{"full", "predicted", "exact"};
   double duration = 5.0;
+  double warmup = 0.0;
   double tick_rate = 0.0;
-  app.add_option("--scene", scene_file, "Scene file (default: the built-in scene)");
-  app.add_option("--bots", bot_counts, "Bot counts to run, one run each")->capture_default_str();
-  app.add_option("--duration", duration, "Seconds measured per run")->capture_default_str();
-  app.add_option("--tick-rate", tick_rate, "Ticks per second (0: the scene's)");
+  bool still = false;
+  std::string csv_path;
+  app.add_option("--scenes", scene_files,
+                 "Scene files, or 'default' for the built-in scene, one run each")
+      ->capture_default_str()
+      ->delimiter(',');
+  app.add_option("--bots", bot_counts, "Bot counts to run, one run each")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1000));
+  app.add_option("--encodings", encodings,
+                 "Snapshot encodings: full (every body, exact), "
+                 "predicted (quantised against the prediction), exact (changed bodies, exact)")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::IsMember({"full", "predicted", "exact"}));
+  app.add_option("--duration", duration, "Seconds measured per run")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--warmup", warmup, "Seconds the server runs alone before the bots join")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 3600.0));
+  app.add_option("--tick-rate", tick_rate, "Ticks per second (0: the scene's)")
+      ->check(CLI::Range(0.0, 1000.0));
+  app.add_flag("--still", still, "Bots send no inputs: they watch (no latency figures)");
+  app.add_option("--csv", csv_path, "Also write the table as CSV to this file");
   CLI11_PARSE(app, argc, argv);
+  spdlog::set_level(spdlog::level::warn);  // the table, not the server's log
 
-  scene::SceneDef scene = scene::default_scene();
-  if (!scene_file.empty()) {
-    auto loaded = scene::load_scene_file(scene_file);
+  std::vector<Run> runs;
+  for (const std::string& file : scene_files) {
+    if (file == "default") {
+      runs.push_back({"default", scene::default_scene()});
+      continue;
+    }
+    auto loaded = scene::load_scene_file(file);
     if (auto* error = std::get_if<scene::SceneError>(&loaded)) {
       fmt::print(stderr, "physics-netbench: {}\n", error->to_string());
-      return 1;
+      return 2;
     }
-    scene = std::get<scene::SceneDef>(std::move(loaded));
+    runs.push_back({file, std::get<scene::SceneDef>(std::move(loaded))});
+  }
+  std::FILE* csv = nullptr;
+  if (!csv_path.empty()) {
+    csv = std::fopen(csv_path.c_str(), "w");
+    if (csv == nullptr) {
+      fmt::print(stderr, "physics-netbench: cannot write {}\n", csv_path);
+      return 2;
+    }
+    fmt::print(csv,
+               "scene,encoding,still,clients_asked,clients_joined,kbit_per_s_per_client,"
+               "bits_per_body_sent,bodies_per_snapshot,snapshots_per_s,worst_error_m,"
+               "server_ms_per_tick_mean,server_ms_per_tick_p99,latency_median_ms,"
+               "latency_p99_ms,views\n");
   }
 
   fmt::print(
-      "| scene | bodies | clients | server ms/tick mean | p99 | max | input->snapshot "
-      "median ms | p99 ms | bytes/s per client | snapshots/s per client |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const int bots : bot_counts) {
-    server::ServerConfig config;
-    config.port = 0;
-    config.tick_rate = tick_rate;
-    config.max_clients = std::max(64, bots + 1);
-    server::Server server(config, scene);
-    std::thread server_thread([&] { server.run(); });
+      "| scene | encoding | clients (joined) | kbit/s per client | bits per body sent | bodies "
+      "per snapshot | snapshots/s | worst error m | server ms/tick mean | p99 | input->snapshot "
+      "median ms | p99 ms |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Run& run : runs) {
+    for (const std::string& encoding_name : encodings) {
+      client::Encoding encoding{};
+      parse_encoding(encoding_name, encoding);
+      for (const int bots : bot_counts) {
+        server::ServerConfig config;
+        config.port = 0;
+        config.tick_rate = tick_rate;
+        config.max_clients = std::max(64, bots + 1);
+        server::Server server(config, run.scene);
+        std::thread server_thread([&] { server.run(); });
+        if (warmup > 0.0) {
+          std::this_thread::sleep_for(
+              std::chrono::milliseconds(static_cast<long>(warmup * 1000.0)));
+        }
 
-    client::LoadConfig load;
-    load.client.port = server.port();
-    load.client.name = "netbench";
-    load.bots = bots;
-    load.duration = std::chrono::milliseconds(static_cast<long>(duration * 1000.0));
-    std::atomic<bool> done{false};
-    client::LoadReport report;
-    std::thread load_thread([&] {
-      report = client::run_load(load);
-      done = true;
-    });
-    const TickSamples ticks = sample_ticks(server, done);
-    load_thread.join();
-    server.stop();
-    server_thread.join();
+        client::LoadConfig load;
+        load.client.port = server.port();
+        load.client.name = "netbench";
+        load.client.view.encoding = encoding;
+        load.bots = bots;
+        load.still = still;
+        load.duration = std::chrono::milliseconds(static_cast<long>(duration * 1000.0));
+        std::atomic<bool> done{false};
+        client::LoadReport report;
+        std::thread load_thread([&] {
+          report = client::run_load(load);
+          done = true;
+        });
+        const TickSamples ticks = sample_ticks(server, done);
+        const server::ServerStats stats = server.stats();
+        load_thread.join();
+        server.stop();
+        server_thread.join();
 
-    const double mean_ms = 1000.0 * ticks.mean_seconds;
-    fmt::print("| {} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {:.0f} | {:.1f} |\n",
-               scene.name, scene.bodies.size() + static_cast<std::size_t>(bots), bots, mean_ms,
-               1000.0 * client::quantile(ticks.seconds, 0.99), 1000.0 * ticks.max_seconds,
-               report.latency_median_ms, report.latency_p99_ms, report.bytes_per_second_mean,
-               report.snapshots_per_second_mean);
-    fmt::print(stderr,
-               "  {} bots: {} connected, {} tick samples of {} ticks, {} latency samples, "
-               "dropped steps {}, dropped snapshots {}, late inputs {}, unanswered inputs {}\n",
-               bots, report.bots_connected, ticks.seconds.size(), ticks.ticks,
-               report.latency_samples, ticks.dropped_steps, ticks.dropped_snapshots,
-               ticks.late_inputs, report.inputs_unanswered);
-    for (const auto& failure : report.failures) fmt::print(stderr, "  {}\n", failure);
+        const double mean_ms = 1000.0 * ticks.mean_seconds;
+        const double p99_ms = 1000.0 * client::quantile(ticks.seconds, 0.99);
+        const double kbit = 8.0 * report.bytes_per_second_mean / 1000.0;
+        const double bits_per_body = report.records > 0 ? 8.0 * static_cast<double>(report.bytes) /
+                                                              static_cast<double>(report.records)
+                                                        : 0.0;
+        const double bodies_per_snapshot =
+            report.snapshots > 0
+                ? static_cast<double>(report.records) / static_cast<double>(report.snapshots)
+                : 0.0;
+        fmt::print(
+            "| {} | {} | {} ({}) | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.4f} | {:.3f} | "
+            "{:.3f} | {} | {} |\n",
+            run.scene.name, encoding_name, bots, report.bots_connected, kbit, bits_per_body,
+            bodies_per_snapshot, report.snapshots_per_second_mean, stats.max_view_error, mean_ms,
+            p99_ms, still ? std::string("-") : fmt::format("{:.2f}", report.latency_median_ms),
+            still ? std::string("-") : fmt::format("{:.2f}", report.latency_p99_ms));
+        if (csv != nullptr) {
+          fmt::print(
+              csv,
+              "{},{},{},{},{},{:.3f},{:.2f},{:.3f},{:.2f},{:.6f},{:.4f},{:.4f},{:.3f},{:.3f},{}\n",
+              run.scene.name, encoding_name, still ? 1 : 0, bots, report.bots_connected, kbit,
+              bits_per_body, bodies_per_snapshot, report.snapshots_per_second_mean,
+              stats.max_view_error, mean_ms, p99_ms, report.latency_median_ms,
+              report.latency_p99_ms, stats.views);
+        }
+        std::fflush(stdout);
+        fmt::print(stderr,
+                   "  {} {} bots: {} connected, {} tick samples of {} ticks, {} latency samples, "
+                   "dropped steps {}, skipped snapshots {}, late inputs {}, views {}\n",
+                   encoding_name, bots, report.bots_connected, ticks.seconds.size(), ticks.ticks,
+                   report.latency_samples, ticks.dropped_steps, ticks.dropped_snapshots,
+                   ticks.late_inputs, stats.views);
+        for (const auto& failure : report.failures) fmt::print(stderr, "  {}\n", failure);
+      }
+    }
   }
+  if (csv != nullptr) std::fclose(csv);
   return 0;
 }

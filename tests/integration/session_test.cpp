@@ -48,7 +48,7 @@ TEST(Session, WelcomeDescribesTheSceneAndTheOwnBody) {
 
 TEST(Session, InputInRealTimeIsAppliedAndMovesTheBodyThatWay) {
   RunningServer server(test_config(), free_flight_scene(false));
-  client::Client player(server.client_config("realtime"));
+  client::Client player(server.exact_client_config("realtime"));
   ASSERT_TRUE(player.connect(3s));
   const std::uint64_t tick = player.welcome().current_tick + 3;
   ASSERT_TRUE(player.send_input(tick, 10.0, -5.0));

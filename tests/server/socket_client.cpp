@@ -73,10 +73,18 @@ bool SocketClient::wait_closed(std::chrono::milliseconds timeout) {
 
 std::optional<physics::wire::Welcome> SocketClient::join(const std::string& name,
                                                          const std::string& token) {
-  send(wire::make_hello(name, token));
+  send(full_view_hello(name, token));
   const auto reply = receive();
   if (!reply || !reply->has_welcome()) return std::nullopt;
   return reply->welcome();
+}
+
+physics::wire::ClientMessage full_view_hello(const std::string& name, const std::string& token) {
+  physics::wire::ClientMessage hello = wire::make_hello(name, token);
+  hello.mutable_hello()->mutable_view()->set_encoding(physics::wire::ENCODING_FULL);
+  hello.mutable_hello()->mutable_view()->set_state_hash(true);
+  hello.mutable_hello()->mutable_view()->set_window(64);
+  return hello;
 }
 
 }  // namespace server_test

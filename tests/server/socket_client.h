@@ -24,7 +24,8 @@ class SocketClient {
       std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
   // Reads (and discards) until the server closes; false on timeout.
   bool wait_closed(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
-  // Hello, then the Welcome (nullopt if something else came).
+  // Hello (asking for ENCODING_FULL, so that every snapshot lists every dynamic
+  // body), then the Welcome (nullopt if something else came).
   std::optional<physics::wire::Welcome> join(const std::string& name,
                                              const std::string& token = {});
   bool closed() const { return closed_; }
@@ -39,5 +40,10 @@ class SocketClient {
   std::array<std::uint8_t, 65536> buffer_{};
   bool closed_ = false;
 };
+
+// A Hello asking for ENCODING_FULL, the world's state hash in every snapshot, and
+// the largest window the server allows by default (64 snapshots).
+physics::wire::ClientMessage full_view_hello(const std::string& name,
+                                             const std::string& token = {});
 
 }  // namespace server_test

@@ -6,7 +6,9 @@
 #include <google/protobuf/util/delimited_message_util.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -214,9 +216,49 @@ TEST(Framing, BufferStaysBoundedWhileAFrameArrivesInChunks) {
   EXPECT_LE(most_buffered, kMax + 10 + kChunk);
 }
 
-TEST(Framing, RandomBytesNeverCrashAndEndInAVerdict) {
-  // A fixed pseudo-random stream: whatever the bytes, the reader answers NeedMore,
-  // Frame, TooLarge or BadPrefix and never buffers past its bound.
+// What a reader with limit `max` must make of `stream`, worked out here from the
+// format (a base-128 varint of at most 10 bytes, the 10th carrying one bit, then
+// that many bytes): the frames in order, then the verdict it stops on.
+struct Reading {
+  std::vector<std::string> frames;
+  FrameStatus verdict = FrameStatus::NeedMore;
+};
+
+Reading reference_reading(const std::string& stream, std::size_t max) {
+  Reading reading;
+  std::size_t at = 0;
+  for (;;) {
+    std::uint64_t length = 0;
+    std::size_t prefix = 0;
+    for (;;) {
+      if (at + prefix == stream.size()) return reading;  // NeedMore
+      const auto byte = static_cast<std::uint8_t>(stream[at + prefix]);
+      if (prefix == 9 && byte > 1) {
+        reading.verdict = FrameStatus::BadPrefix;
+        return reading;
+      }
+      length |= static_cast<std::uint64_t>(byte & 0x7F) << (7 * prefix);
+      ++prefix;
+      if ((byte & 0x80) == 0) break;
+      if (prefix == 10) {
+        reading.verdict = FrameStatus::BadPrefix;
+        return reading;
+      }
+    }
+    if (length > max) {
+      reading.verdict = FrameStatus::TooLarge;
+      return reading;
+    }
+    if (stream.size() - at - prefix < length) return reading;  // NeedMore
+    reading.frames.push_back(stream.substr(at + prefix, static_cast<std::size_t>(length)));
+    at += prefix + static_cast<std::size_t>(length);
+  }
+}
+
+TEST(Framing, RandomBytesGiveTheFramesAndVerdictTheFormatSays) {
+  // Fixed pseudo-random streams, fed in chunks as a socket would: the reader must
+  // give exactly the frames and the verdict that the format gives, and never
+  // buffer more than max_message_bytes + 10 + the chunk size (framing.h).
   std::uint64_t state = 0x9E3779B97F4A7C15ull;
   std::string garbage;
   for (int i = 0; i < 100000; ++i) {
@@ -225,21 +267,40 @@ TEST(Framing, RandomBytesNeverCrashAndEndInAVerdict) {
     state ^= state << 17;
     garbage.push_back(static_cast<char>(state & 0xFF));
   }
+  constexpr std::size_t kMax = 4096;
+  constexpr std::size_t kChunk = 256;
+  int frames_seen = 0;
+  int too_large_seen = 0;
   for (std::size_t start = 0; start < 64; ++start) {
-    FrameReader reader(4096);
-    reader.feed(bytes_of(garbage).subspan(start, 8192));
+    const std::string stream = garbage.substr(start);
+    const Reading expected = reference_reading(stream, kMax);
+    FrameReader reader(kMax);
+    std::vector<std::string> frames;
+    FrameStatus status = FrameStatus::NeedMore;
+    std::size_t most_buffered = 0;
     std::string frame;
-    FrameStatus status;
-    int frames = 0;
-    while ((status = reader.next(frame)) == FrameStatus::Frame) {
-      ClientMessage parsed;
-      (void)wire::parse_client_message(frame, parsed);  // may or may not parse
-      ++frames;
+    // Fed until the reader gives up on the stream (TooLarge, BadPrefix) or it ends.
+    for (std::size_t at = 0; at < stream.size() && status == FrameStatus::NeedMore; at += kChunk) {
+      reader.feed(bytes_of(stream).subspan(at, std::min(kChunk, stream.size() - at)));
+      most_buffered = std::max(most_buffered, reader.buffered_bytes());
+      while ((status = reader.next(frame)) == FrameStatus::Frame) {
+        ClientMessage parsed;
+        (void)wire::parse_client_message(frame, parsed);  // may or may not parse
+        frames.push_back(frame);
+      }
     }
-    EXPECT_TRUE(status == FrameStatus::NeedMore || status == FrameStatus::TooLarge ||
-                status == FrameStatus::BadPrefix);
-    EXPECT_LE(reader.buffered_bytes(), 8192u);
+    EXPECT_EQ(frames, expected.frames) << "from byte " << start;
+    EXPECT_EQ(status, expected.verdict) << "from byte " << start;
+    EXPECT_LE(most_buffered, kMax + 10 + kChunk) << "from byte " << start;
+    frames_seen += static_cast<int>(frames.size());
+    too_large_seen += status == FrameStatus::TooLarge ? 1 : 0;
   }
+  // The streams exercise the reader: frames come out, and most end on a length
+  // over the limit.
+  EXPECT_GT(frames_seen, 64);
+  EXPECT_GT(too_large_seen, 32);
+  std::printf("random bytes: %d frames, %d of 64 streams end TooLarge\n", frames_seen,
+              too_large_seen);
 }
 
 }  // namespace

@@ -17,6 +17,10 @@
 #include "client/connection_state.h"
 #include "client/types.h"
 
+namespace physics::wire {
+class Snapshot;
+}
+
 namespace client {
 
 struct ClientConfig {
@@ -36,6 +40,8 @@ struct ClientConfig {
   // long, the client sends a Ping, so that a client that only watches is not
   // dropped as idle (the server's idle timeout is 10 s by default). 0 turns it off.
   std::chrono::milliseconds keepalive{2000};
+  // How the world is to be sent (Hello.view).
+  ViewRequest view;
 };
 
 // Why the client is not (or no longer) connected.
@@ -56,6 +62,10 @@ struct ClientStats {
   std::uint64_t snapshots_dropped = 0;  // over max_buffered_snapshots
   std::uint64_t errors_received = 0;
   std::uint64_t inputs_sent = 0;
+  std::uint64_t records_received = 0;  // body records over all snapshots
+  std::uint64_t acks_sent = 0;
+  std::uint64_t desyncs = 0;  // snapshots whose view hash differed from ours
+  std::uint64_t full_states_received = 0;
 };
 
 class Client {
@@ -81,7 +91,9 @@ class Client {
   bool send_ping(std::uint64_t nonce);
 
   // The oldest snapshot not yet taken, waiting up to `timeout` for one to arrive.
-  // nullopt on timeout or when the session ended (state() tells which).
+  // nullopt on timeout or when the session ended (state() tells which). Taking a
+  // snapshot acknowledges it (the Ack goes with the next message or wait): the
+  // server sends no more than the view's window of snapshots not yet taken.
   std::optional<Snapshot> next_snapshot(std::chrono::milliseconds timeout);
   // The newest snapshot received, dropping older ones not yet taken; waits up to
   // `timeout` only when none is buffered.
@@ -94,12 +106,16 @@ class Client {
   std::optional<ServerError> next_error(std::chrono::milliseconds timeout);
   std::optional<Pong> next_pong(std::chrono::milliseconds timeout);
   std::size_t buffered_snapshots() const { return snapshots_.size(); }
+  // Asks the server for a full state (the client does so itself when its view hash
+  // differs from the server's).
+  bool request_full_state();
 
   // Sends Bye and closes. The state becomes Disconnected.
   void disconnect(const std::string& reason = "bye");
 
  private:
   struct Io;
+  struct Held;
   enum class Wait { Snapshot, Error, Pong };
 
   bool wait_until(Wait what, std::chrono::milliseconds timeout);
@@ -108,6 +124,9 @@ class Client {
   void on_bytes(std::size_t count);
   void handle_frame(const std::string& frame);
   bool send_frame(const std::string& frame);
+  void taken(const Snapshot& snapshot);
+  bool flush_ack();
+  void on_snapshot(const physics::wire::Snapshot& message, std::size_t wire_bytes);
   void fail(ConnectionState state, std::string detail);
   void close_socket();
 
@@ -122,6 +141,10 @@ class Client {
   std::deque<Snapshot> snapshots_;
   std::deque<ServerError> errors_;
   std::deque<Pong> pongs_;
+  std::unique_ptr<Held> held_;
+  std::uint64_t ack_due_ = 0;  // the newest tick taken and not yet acknowledged
+  bool ack_pending_ = false;
+  bool full_state_asked_ = false;
 };
 
 template <class Predicate>

@@ -22,6 +22,8 @@ struct LoadConfig {
   std::uint64_t input_lead = 1;
   // Acceleration magnitude of the bots' circling pattern (m/s^2).
   double acceleration = 5.0;
+  // Still bots send no inputs: they only watch (and acknowledge, and keep alive).
+  bool still = false;
 };
 
 struct LoadReport {
@@ -41,6 +43,10 @@ struct LoadReport {
   double bytes_per_second_min = 0.0;
   double bytes_per_second_max = 0.0;
   double snapshots_per_second_mean = 0.0;
+  // Body records received over all bots, and the wire bits they came in.
+  std::uint64_t records = 0;
+  std::uint64_t snapshots = 0;
+  std::uint64_t bytes = 0;
   std::uint64_t inputs_sent = 0;
   std::uint64_t inputs_unanswered = 0;  // sent, but no snapshot reflected them by the end
   std::uint64_t snapshots_dropped = 0;  // by the clients' own buffer bound

@@ -12,7 +12,7 @@
 namespace client {
 
 // The protocol version this client speaks (physics.wire.PROTOCOL_VERSION_CURRENT).
-inline constexpr std::uint32_t kProtocolVersion = 1;
+inline constexpr std::uint32_t kProtocolVersion = 2;
 
 struct Vec2 {
   double x = 0.0;
@@ -43,6 +43,51 @@ struct BodyState {
   bool operator==(const BodyState&) const = default;
 };
 
+// How snapshots describe the bodies (physics.wire.Encoding).
+enum class Encoding : std::uint8_t {
+  Predicted = 0,  // quantised, only bodies that left the prediction (the default)
+  Exact = 1,      // exact doubles, only bodies that changed at all
+  Full = 2,       // exact doubles, every dynamic body in every snapshot
+};
+
+struct Rect {
+  double min_x = 0.0;
+  double min_y = 0.0;
+  double max_x = 0.0;
+  double max_y = 0.0;
+};
+
+// What a client asks for in Hello.view; a field left empty takes the server's
+// default (docs/PROTOCOL.md, section 5.1).
+struct ViewRequest {
+  Encoding encoding = Encoding::Predicted;
+  std::optional<double> position_precision;        // m
+  std::optional<double> velocity_precision;        // m/s
+  std::optional<double> position_tolerance;        // m
+  std::optional<double> velocity_tolerance;        // m/s
+  std::optional<std::uint32_t> snapshot_interval;  // every k-th tick
+  std::optional<std::uint32_t> window;             // unacknowledged snapshots, at most
+  std::optional<double> interest_radius;           // m around the own body
+  std::optional<Rect> interest_rect;
+  std::optional<std::uint32_t> byte_budget;  // bytes of body records per snapshot
+  bool state_hash = false;                   // the world's hash in every snapshot
+};
+
+// The view in force, as Welcome.view gives it (every field filled in).
+struct View {
+  Encoding encoding = Encoding::Predicted;
+  double position_precision = 0.0;
+  double velocity_precision = 0.0;
+  double position_tolerance = 0.0;
+  double velocity_tolerance = 0.0;
+  std::uint32_t snapshot_interval = 1;
+  std::uint32_t window = 0;
+  std::optional<double> interest_radius;
+  std::optional<Rect> interest_rect;
+  std::uint32_t byte_budget = 0;
+  bool state_hash = false;
+};
+
 struct Welcome {
   std::uint32_t protocol_version = 0;
   std::uint32_t client_id = 0;
@@ -55,19 +100,29 @@ struct Welcome {
   bool lockstep = false;
   std::uint32_t max_ticks_ahead = 0;
   std::string scene_name;
+  View view;
+  std::uint32_t max_players = 0;
 };
 
-// The world after tick `tick`.
+// The world after tick `tick`, as this client holds it: every dynamic body in its
+// view, reconstructed from what the server sent (exact with Encoding::Exact and
+// Encoding::Full; within the view's tolerance with Encoding::Predicted).
 struct Snapshot {
   std::uint64_t tick = 0;
-  std::uint64_t state_hash = 0;
-  std::vector<BodyState> bodies;  // every dynamic body, ascending id
+  std::uint64_t state_hash = 0;   // the world's, when the view asked for it (else 0)
+  std::vector<BodyState> bodies;  // every dynamic body held, ascending id
   // The own body's state in this snapshot (absent only if the server left it out).
   std::optional<BodyState> own;
   bool has_applied_input = false;
   std::uint64_t last_applied_input_tick = 0;  // valid when has_applied_input
   std::vector<BodyShape> added;
   std::vector<std::uint64_t> removed;
+  std::size_t records = 0;  // bodies this snapshot carried (the rest were predicted)
+  bool full = false;        // a full state: the bodies held were rebuilt from it
+  // Predicted and exact encodings: the server's hash of what this client holds, and
+  // whether ours equals it (false: the client has asked for a full state).
+  std::uint64_t view_hash = 0;
+  bool in_sync = true;
   // Local bookkeeping, not on the wire: when the frame was decoded, and its size
   // on the wire (length prefix included).
   std::chrono::steady_clock::time_point received_at;
@@ -96,6 +151,9 @@ enum class ErrorCode : std::uint32_t {
   TooSlow = 9,
   ShuttingDown = 10,
   NoSpawn = 11,
+  InvalidView = 12,
+  InvalidAck = 13,
+  RateLimited = 14,
 };
 
 std::string_view to_string(ErrorCode code);

@@ -73,7 +73,10 @@ inline void StepRunner::integrate() {
     // A squared speed below a quarter of the limit's square is surely under the
     // limit (sqrt of it is about half the limit): no square root for the usual body.
     const double speed_squared = dot(v, v);
-    const double speed = speed_squared <= surely_slow_ ? 0.0 : std::sqrt(speed_squared);
+    double speed = speed_squared <= surely_slow_ ? 0.0 : std::sqrt(speed_squared);
+    // The square overflows past about 1.3e154 m/s; under a max_speed above that, the
+    // speed is measured again without squaring.
+    if (speed > s_.max_speed && std::isinf(speed)) speed = length_without_overflow(v);
     if (speed > s_.max_speed) {  // the world stays finite: speeds are capped
       const double scale = s_.max_speed / speed;
       v = v * scale;

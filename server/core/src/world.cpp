@@ -10,12 +10,12 @@
 namespace phys {
 
 namespace {
-// v scaled down to `limit` if longer, counting each time it had to be.
-Vec2 clamp_length(Vec2 v, double limit, std::uint64_t& clamps) {
-  const double magnitude = length(v);
-  if (!(magnitude > limit)) return v;
-  ++clamps;
-  return v * (limit / magnitude);
+// v scaled down to `limit` if longer (vec2.h), counting each time it had to be.
+Vec2 clamp_counted(Vec2 v, double limit, std::uint64_t& clamps) {
+  bool clamped = false;
+  const Vec2 out = clamp_length(v, limit, &clamped);
+  if (clamped) ++clamps;
+  return out;
 }
 }  // namespace
 
@@ -93,9 +93,9 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
   b.contact_friction = def.contact_friction;
   if (def.motion == Motion::Dynamic) {
     // A definition is held to the same limits as the setters: the world stays finite.
-    b.velocity = clamp_length(def.velocity, settings.max_speed, counters.speed_clamps);
+    b.velocity = clamp_counted(def.velocity, settings.max_speed, counters.speed_clamps);
     b.acceleration =
-        clamp_length(def.acceleration, settings.max_acceleration, counters.acceleration_clamps);
+        clamp_counted(def.acceleration, settings.max_acceleration, counters.acceleration_clamps);
     b.mass = def.mass;
     b.inv_mass = 1.0 / def.mass;
     ++dynamic_count_;
@@ -213,8 +213,8 @@ bool World::contains(BodyId id) const { return impl_->find(id) != nullptr; }
 bool World::set_acceleration(BodyId id, Vec2 acceleration) {
   Body* b = impl_->find(id);
   if (!b || !b->is_dynamic() || !is_finite(acceleration)) return false;
-  acceleration = clamp_length(acceleration, impl_->settings.max_acceleration,
-                              impl_->counters.acceleration_clamps);
+  acceleration = clamp_counted(acceleration, impl_->settings.max_acceleration,
+                               impl_->counters.acceleration_clamps);
   if (acceleration == b->acceleration) return true;
   b->acceleration = acceleration;
   impl_->wake(id.index);
@@ -235,7 +235,7 @@ bool World::set_position(BodyId id, Vec2 position) {
 bool World::set_velocity(BodyId id, Vec2 velocity) {
   Body* b = impl_->find(id);
   if (!b || !b->is_dynamic() || !is_finite(velocity)) return false;
-  velocity = clamp_length(velocity, impl_->settings.max_speed, impl_->counters.speed_clamps);
+  velocity = clamp_counted(velocity, impl_->settings.max_speed, impl_->counters.speed_clamps);
   b->velocity = velocity;
   impl_->wake(id.index);
   return true;

@@ -25,10 +25,7 @@ struct InputCheck {
   bool accepted() const { return verdict == InputVerdict::OnTime || verdict == InputVerdict::Late; }
 };
 
-// Scales `a` down to magnitude `limit` when it is longer, keeping its direction;
-// huge finite components do not overflow to infinity on the way.
-phys::Vec2 clamp_magnitude(phys::Vec2 a, double limit, bool* clamped = nullptr);
-
+// The magnitude is clamped by phys::clamp_length, the one overflow-safe clamp.
 // `current_tick` is the last tick stepped; the next one is current_tick + 1.
 InputCheck check_input(std::uint64_t tick, phys::Vec2 acceleration, std::uint64_t current_tick,
                        std::uint64_t max_ticks_ahead, double max_acceleration);

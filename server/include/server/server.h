@@ -34,11 +34,11 @@ struct ServerConfig {
   std::optional<std::string> token;
   // A frame whose length prefix is over this is answered with an Error, then closed.
   std::size_t max_message_bytes = 1u << 20;
-  // Snapshots waiting to be written to one client; past this the oldest unsent one
-  // is dropped (a slow client gets the newest state, not a growing backlog). Above
-  // the scene's steps per frame (6 by default), so that a frame that catches up on
-  // several ticks at once drops nothing for a client that reads.
-  std::size_t max_queued_snapshots = 8;
+  // The largest window (snapshots sent and not yet acknowledged) a client may ask
+  // for in Hello.view; the default window is min(12, this). A client whose window
+  // is full skips ticks, so no client ever holds more than this many snapshots in
+  // the server's queue and the kernel's buffers together.
+  std::uint32_t max_snapshot_window = 64;
   // A client is dropped when nothing arrives from it for this long (clients that
   // send no inputs send Ping), or when a write to it makes no progress this long.
   std::chrono::milliseconds idle_timeout{10000};
@@ -51,6 +51,9 @@ struct ServerConfig {
   // to megabytes). Smaller means a slow reader is noticed sooner and costs less
   // kernel memory; tests of slow clients use it.
   int socket_send_buffer_bytes = 0;
+  // A client that has been sent nothing for this long (nothing in its view changed)
+  // gets a snapshot of its header alone, so it knows the server still ticks.
+  std::chrono::milliseconds heartbeat{1000};
   // Install SIGINT/SIGTERM handlers on the server's io_context (physics-server does).
   bool handle_signals = false;
 };
@@ -69,6 +72,7 @@ enum class DropReason : std::uint8_t {
   Idle,               // nothing received for idle_timeout
   TooSlow,            // a write made no progress for idle_timeout
   ShuttingDown,       // the server stopped
+  InvalidView,        // Hello.view with a field out of range
 };
 const char* to_string(DropReason reason);
 
@@ -82,11 +86,22 @@ struct ServerStats {
   std::uint64_t invalid_inputs = 0;  // NaN or infinite
   std::uint64_t clamped_inputs = 0;  // magnitude over the scene's max_acceleration
   std::uint64_t lockstep_timeouts = 0;
-  std::uint64_t reused_inputs = 0;      // lockstep: a missing input replaced by the last
-  std::uint64_t dropped_steps = 0;      // backlog the fixed-timestep driver threw away
-  std::uint64_t dropped_snapshots = 0;  // unsent snapshots replaced by newer ones
+  std::uint64_t reused_inputs = 0;  // lockstep: a missing input replaced by the last
+  std::uint64_t dropped_steps = 0;  // backlog the fixed-timestep driver threw away
+  // Due snapshots not sent because the client's window was full (it skipped them).
+  std::uint64_t skipped_snapshots = 0;
+  std::uint64_t snapshots_sent = 0;
+  std::uint64_t snapshot_records = 0;  // body records in the snapshots sent
+  std::uint64_t full_states = 0;       // full states sent (joins and requests)
+  std::uint64_t view_updates = 0;      // encodings made: one per view per due tick
+  std::size_t views = 0;               // views now (clients with equal views share one)
+  std::uint64_t invalid_acks = 0;
+  std::uint64_t rate_limited = 0;  // full-state requests while one was pending
+  // The worst position error of any client's reconstruction against the world, over
+  // every view update (per axis, metres): the tolerance bounds it, a byte budget may not.
+  double max_view_error = 0.0;
   // The most snapshots one session ever held (the one being written included):
-  // never above max_queued_snapshots + 1, however slow the client.
+  // never above its window, however slow the client.
   std::size_t peak_queued_snapshots = 0;
   std::uint64_t bytes_sent = 0;
   std::uint64_t bytes_received = 0;

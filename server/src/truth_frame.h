@@ -1,0 +1,43 @@
+#pragma once
+// The world after a tick as the snapshot side reads it: every dynamic body's exact
+// state, in ascending id, read from the world once per tick and shared by every
+// view. `supported` tells the views which predictor fits a body: a body whose
+// velocity changed over the last tick by about nothing, not by gravity, is held up
+// by something (it slides or rests) rather than flying.
+#include <cstdint>
+#include <vector>
+
+#include "physics/vec2.h"
+#include "physics/world.h"
+
+namespace server {
+
+struct TruthBody {
+  std::uint64_t id = 0;
+  double x = 0.0;
+  double y = 0.0;
+  double vx = 0.0;
+  double vy = 0.0;
+  bool awake = true;
+  bool supported = false;
+  // The state one tick before (equal to this one for a body new this tick).
+  double previous_x = 0.0;
+  double previous_y = 0.0;
+  double previous_vx = 0.0;
+  double previous_vy = 0.0;
+};
+
+struct TruthFrame {
+  std::uint64_t tick = 0;
+  std::uint64_t state_hash = 0;
+  std::vector<TruthBody> bodies;  // dynamic bodies, ascending id
+
+  const TruthBody* find(std::uint64_t id) const;
+};
+
+// Reads the world after `tick`. `previous` is the frame of the tick before (or
+// null), from which each body's change of velocity is taken.
+TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthFrame* previous,
+                      double dt);
+
+}  // namespace server
