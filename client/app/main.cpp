@@ -131,7 +131,35 @@ int main(int argc, char** argv) {
                  "How long to wait for the connection and the Welcome")
       ->check(CLI::Range(1, 600000))
       ->capture_default_str();
+  // The view (docs/PROTOCOL.md, section 5.1); the server checks every range.
+  std::string encoding = "predicted";
+  app.add_option("--encoding", encoding,
+                 "How snapshots describe the bodies: predicted (quantised, only what left the "
+                 "prediction), exact (exact doubles, only what changed), full (every body)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"predicted", "exact", "full"}));
+  app.add_option("--position-precision", options.client.view.position_precision,
+                 "Metres per quantum of a position (server default 0.001)");
+  app.add_option("--velocity-precision", options.client.view.velocity_precision,
+                 "m/s per quantum of a velocity (server default 0.001)");
+  app.add_option("--position-tolerance", options.client.view.position_tolerance,
+                 "Resend a body once its position is off by more (server default 0.01 m)");
+  app.add_option("--velocity-tolerance", options.client.view.velocity_tolerance,
+                 "Resend a body once its velocity is off by more (server default 0.1 m/s)");
+  app.add_option("--snapshot-interval", options.client.view.snapshot_interval,
+                 "A snapshot every k-th tick (server default 1)");
+  app.add_option("--window", options.client.view.window,
+                 "Snapshots sent and not yet acknowledged, at most (server default 12)");
+  app.add_option("--interest-radius", options.client.view.interest_radius,
+                 "Only bodies within this many metres of the own body");
+  app.add_option("--byte-budget", options.client.view.byte_budget,
+                 "Bytes of body records per snapshot, about (0: none)");
+  app.add_flag("--state-hash", options.client.view.state_hash,
+               "Ask for the world's state hash in every snapshot");
   CLI11_PARSE(app, argc, argv);
+  options.client.view.encoding = encoding == "exact"  ? client::Encoding::Exact
+                                 : encoding == "full" ? client::Encoding::Full
+                                                      : client::Encoding::Predicted;
 
   for (const double value : options.accel) {
     if (!std::isfinite(value)) {

@@ -61,14 +61,16 @@ std::string format_snapshot(const client::Snapshot& snapshot, bool json) {
     return fmt::format(
         "{{\"tick\":{},\"state_hash\":\"{:016x}\",\"own_body\":{},\"has_own\":{},\"x\":{},"
         "\"y\":{},\"vx\":{},\"vy\":{},\"has_applied_input\":{},\"last_applied_input_tick\":{},"
-        "\"bodies\":{}}}",
+        "\"bodies\":{},\"records\":{},\"wire_bytes\":{},\"in_sync\":{}}}",
         snapshot.tick, snapshot.state_hash, own.body_id, snapshot.own.has_value(), own.position.x,
         own.position.y, own.velocity.x, own.velocity.y, snapshot.has_applied_input,
-        snapshot.last_applied_input_tick, snapshot.bodies.size());
+        snapshot.last_applied_input_tick, snapshot.bodies.size(), snapshot.records,
+        snapshot.wire_bytes, snapshot.in_sync);
   }
-  return fmt::format("tick {} pos ({:.6f}, {:.6f}) vel ({:.6f}, {:.6f}) hash {:016x}",
-                     snapshot.tick, own.position.x, own.position.y, own.velocity.x, own.velocity.y,
-                     snapshot.state_hash);
+  return fmt::format(
+      "tick {} pos ({:.6f}, {:.6f}) vel ({:.6f}, {:.6f}) hash {:016x} ({} records, {} bytes)",
+      snapshot.tick, own.position.x, own.position.y, own.velocity.x, own.velocity.y,
+      snapshot.state_hash, snapshot.records, snapshot.wire_bytes);
 }
 
 std::string format_load_report(const client::LoadReport& report, bool json) {

@@ -41,6 +41,11 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
   start.arrive_and_wait();
   if (!result.connected) return;
 
+  for (const auto settled = Clock::now() + config.settle; Clock::now() < settled;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(settled - Clock::now());
+    bot.next_snapshot(std::max(left, std::chrono::milliseconds(1)));
+    if (bot.state() != ConnectionState::Connected) break;
+  }
   const auto begin = Clock::now();
   const auto end = begin + config.duration;
   const std::uint64_t bytes_before = bot.stats().bytes_received;

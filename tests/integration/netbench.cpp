@@ -85,6 +85,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> encodings{"full", "predicted", "exact"};
   double duration = 5.0;
   double warmup = 0.0;
+  double settle = 0.0;
   double tick_rate = 0.0;
   bool still = false;
   std::string csv_path;
@@ -106,6 +107,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.1, 3600.0));
   app.add_option("--warmup", warmup, "Seconds the server runs alone before the bots join")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 3600.0));
+  app.add_option("--settle", settle,
+                 "Seconds the bots watch after joining before the measurement starts")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 3600.0));
   app.add_option("--tick-rate", tick_rate, "Ticks per second (0: the scene's)")
@@ -169,6 +174,7 @@ int main(int argc, char** argv) {
         load.client.view.encoding = encoding;
         load.bots = bots;
         load.still = still;
+        load.settle = std::chrono::milliseconds(static_cast<long>(settle * 1000.0));
         load.duration = std::chrono::milliseconds(static_cast<long>(duration * 1000.0));
         std::atomic<bool> done{false};
         client::LoadReport report;

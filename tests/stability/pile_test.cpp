@@ -6,7 +6,7 @@
 //   nothing becomes NaN or infinite, checked every 10 steps;
 //   after settling (30 s with contact friction, 75 s without), every circle is
 //   asleep, and no two circles (nor a circle and the container) overlap by more
-//   than 0.01 m;
+//   than 0.003 m with contact friction, 0.01 m (hard case 6's bound) without;
 //   once asleep, the pile stays asleep for 10 s more: no circle wakes, none moves
 //   (positions equal to the bit), and the kinetic energy is exactly 0.
 #include <gtest/gtest.h>
@@ -28,7 +28,10 @@ constexpr double kInner = 50.0;  // inner faces of the walls at x = +-50
 constexpr double kWallTop = 500.0;
 constexpr int kSettleSteps = 1800;  // 30 s
 constexpr int kWatchSteps = 600;    // 10 s more
-constexpr double kMaxOverlap = 0.01;
+// The overlap bounds, each between the figure measured and the figure without the
+// mechanism it guards (see the two tests below).
+constexpr double kMaxOverlapWithFriction = 0.003;
+constexpr double kMaxOverlapFrictionless = 0.01;
 
 // The container and the circles, all with contact friction `mu`.
 void build_pile(World& world, double mu) {
@@ -67,7 +70,7 @@ void expect_contained(const std::vector<BodyState>& bodies, int step) {
 // it for 10 s more (the bounds in the file's header).
 class SettlingPile : public ::testing::Test {
  protected:
-  void settle(double mu, int settle_steps = kSettleSteps) {
+  void settle(double mu, double max_overlap_bound, int settle_steps = kSettleSteps) {
     World world;
     build_pile(world, mu);
     ASSERT_EQ(world.dynamic_body_count(), static_cast<std::size_t>(kCircles));
@@ -86,7 +89,7 @@ class SettlingPile : public ::testing::Test {
     std::printf(
         "pile: settled after %d steps in %.1f s wall; overlap %.4g m, KE %.4g J, awake %zu\n",
         settle_steps, settle_seconds, settled_overlap, energy, world.awake_body_count());
-    EXPECT_LE(settled_overlap, kMaxOverlap);
+    EXPECT_LE(settled_overlap, max_overlap_bound);
     ASSERT_EQ(world.awake_body_count(), 0U)
         << "circles still awake after " << settle_steps / 60 << " s";
 
@@ -115,14 +118,18 @@ class SettlingPile : public ::testing::Test {
 // Measured (Release, current core): KE 0 at every friction; settled overlap
 // 0.0010, 0.0004, 0.0002 and 0.0002 m at 0.5, 1, 2 and 5 (frozen when the pair
 // falls asleep; 0.0010, 0.0014, 0.0021 and 0.0007 m with the support cone of 60
-// degrees). Before the
-// position passes' static friction stopped lowering bodies (docs/PHYSICS.md,
-// "Squeezes at high friction") it was 0.0077 m at 0.5, and 0.029 m at 1: a circle
-// squeezed against the wall by a neighbour, whose escape up the wall the wall's
-// static friction undid in every pass.
+// degrees). The bound, 0.003 m, guards the squeeze rule: before the position
+// passes' static friction stopped lowering bodies (docs/PHYSICS.md, "Squeezes at
+// high friction") it was 0.0077 m at 0.5, and 0.029 m at 1: a circle squeezed
+// against the wall by a neighbour, whose escape up the wall the wall's static
+// friction undid in every pass. The world has no setting for the rule; with it
+// switched off by hand in the current core (not committed) the settled overlap is
+// 0.039, 0.063, 0.023 and 0.034 m at 0.5, 1, 2 and 5, and every case fails.
 class SettlingWithFriction : public SettlingPile, public ::testing::WithParamInterface<double> {};
 
-TEST_P(SettlingWithFriction, FallsAsleepWithoutOverlapAndStaysAsleep) { settle(GetParam()); }
+TEST_P(SettlingWithFriction, FallsAsleepWithoutOverlapAndStaysAsleep) {
+  settle(GetParam(), kMaxOverlapWithFriction);
+}
 
 INSTANTIATE_TEST_SUITE_P(ContactFriction, SettlingWithFriction,
                          ::testing::Values(0.5, 1.0, 2.0, 5.0), [](const auto& param_info) {
@@ -139,11 +146,12 @@ INSTANTIATE_TEST_SUITE_P(ContactFriction, SettlingWithFriction,
 // all asleep from 43.5 s, overlap 0.0042 m, KE 0. With the support cone of 60 degrees
 // (docs/PHYSICS.md, "Stacks: shock propagation") it fell asleep only at 60 s, with
 // 0.0148 m frozen in rows of side-by-side circles compressed end to end, and this
-// test was disabled.
+// test was disabled: the bound of 0.01 m lies between 0.0042 and 0.0148 m (the cone
+// is a constant of the core, with no setting).
 constexpr int kFrictionlessSettleSteps = 4500;  // 75 s
 
 TEST_F(SettlingPile, FrictionlessFallsAsleepWithoutOverlapAndStaysAsleep) {
-  settle(0.0, kFrictionlessSettleSteps);
+  settle(0.0, kMaxOverlapFrictionless, kFrictionlessSettleSteps);
 }
 
 }  // namespace

@@ -6,6 +6,16 @@
 //   slop;
 //   a box landing exactly on the seam between two boxes ends resting on top
 //   (within the slop), never moved sideways (x exactly unchanged) nor thrown up.
+// Measured: the boxes' velocities within 6e-16 of v0 of the decay, the circle's
+// within 2.6e-14. How the bounds were validated (the world has no setting for
+// either rule, so each was switched off by hand in the core, not committed):
+//   a circle beside a tile's corner is no near miss (step_position.cpp): without
+//   that rule the circle slider's velocity leaves the decay by 3.6e-3 of v0 at once
+//   and its test fails;
+//   a box pair is resolved on an axis only if it is the shallower one: without that
+//   rule every case here still passes (the Y phase has lifted a landing or sliding
+//   box out of its tiles before the X phase looks, and a pair touching on the other
+//   axis only is skipped first), so these tests do not guard it.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,8 @@
 // The uniform grid against brute force on many random scenes (mixed sizes, huge
 // boxes, negative coordinates, far from the origin), and its output order fixed
-// by the inputs alone.
+// by the inputs alone. Also the test support's own pair finder (sweep_pairs, which
+// the overlap measure of the stability bounds uses instead of the grid) against an
+// all-pairs loop written here.
 #include "physics/broadphase.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +12,8 @@
 #include <random>
 #include <set>
 #include <vector>
+
+#include "physics_test_support.h"
 
 namespace phys {
 namespace {
@@ -149,6 +153,78 @@ TEST(BruteForce, HandCheckedPairs) {
   UniformGrid grid;
   grid.find_pairs(boxes, pairs);
   EXPECT_EQ(sorted(pairs), (std::vector<BodyPair>{{0, 1}, {1, 2}}));
+}
+
+// Every pair of boxes that meet, by looking at all n(n-1)/2 of them: the oracle of
+// the test support's sweep, sharing no code with it nor with the core.
+std::vector<testing::IndexPair> all_meeting_pairs(const std::vector<Aabb>& boxes) {
+  std::vector<testing::IndexPair> pairs;
+  for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+    for (std::uint32_t j = i + 1; j < boxes.size(); ++j) {
+      const Aabb& a = boxes[i];
+      const Aabb& b = boxes[j];
+      if (a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y) {
+        pairs.push_back({i, j});
+      }
+    }
+  }
+  return pairs;
+}
+
+class SweepAgainstAllPairs : public ::testing::TestWithParam<SceneShape> {};
+
+TEST_P(SweepAgainstAllPairs, FindsExactlyTheSamePairs) {
+  for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+    const std::vector<Aabb> boxes = random_scene(GetParam(), seed);
+    std::vector<testing::IndexPair> swept = testing::sweep_pairs(boxes);
+    for (const testing::IndexPair& pair : swept) ASSERT_LT(pair.a, pair.b) << "seed " << seed;
+    std::sort(swept.begin(), swept.end());
+    ASSERT_EQ(swept, all_meeting_pairs(boxes)) << "seed " << seed;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SweepAgainstAllPairs, ::testing::ValuesIn(kShapes),
+                         [](const auto& case_info) { return std::string(case_info.param.name); });
+
+TEST(SweepPairs, HandCheckedPairs) {
+  // As BruteForce.HandCheckedPairs, with a box 4 spanning them all on x but not on
+  // y (the sweep must pass over it): pairs (0,1), (1,2) and, touching 3 on y, (3,4).
+  const std::vector<Aabb> boxes{{{0.0, 0.0}, {2.0, 2.0}},
+                                {{1.0, 1.0}, {3.0, 3.0}},
+                                {{3.0, 0.0}, {4.0, 1.0}},
+                                {{10.0, 10.0}, {11.0, 11.0}},
+                                {{-5.0, 11.0}, {20.0, 12.0}}};
+  std::vector<testing::IndexPair> pairs = testing::sweep_pairs(boxes);
+  std::sort(pairs.begin(), pairs.end());
+  EXPECT_EQ(pairs, (std::vector<testing::IndexPair>{{0, 1}, {1, 2}, {3, 4}}));
+}
+
+// The overlap measure by hand: circles of radius 0.5 whose centres are 0.9 m apart
+// overlap by 0.1 m; a circle whose centre is 0.45 m above a box's top (r = 0.5)
+// sinks 0.05 m into it; two static boxes overlapping by 0.5 m do not count.
+TEST(MaxOverlap, HandComputedScene) {
+  std::vector<BodyState> bodies(6);
+  const auto circle = [](BodyState& b, Vec2 at) {
+    b.shape = Shape::Circle;
+    b.motion = Motion::Dynamic;
+    b.radius = 0.5;
+    b.position = at;
+  };
+  const auto box = [](BodyState& b, Vec2 at, Vec2 half) {
+    b.shape = Shape::Box;
+    b.motion = Motion::Static;
+    b.half_extents = half;
+    b.position = at;
+  };
+  circle(bodies[0], {100.0, 0.0});
+  circle(bodies[1], {100.9, 0.0});
+  box(bodies[2], {0.0, -0.5}, {1.0, 0.5});
+  circle(bodies[3], {0.0, 0.45});
+  box(bodies[4], {-50.0, 0.0}, {1.0, 1.0});
+  box(bodies[5], {-48.5, 0.0}, {1.0, 1.0});
+  EXPECT_NEAR(testing::max_overlap(bodies), 0.1, 1e-12);
+  bodies[1].position.x = 101.5;  // now apart: the circle on the box is the deepest
+  EXPECT_NEAR(testing::max_overlap(bodies), 0.05, 1e-12);
 }
 
 TEST(UniformGrid, ClearsTheOutputFirst) {

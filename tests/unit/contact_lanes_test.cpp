@@ -20,7 +20,9 @@ namespace phys::testing {
 namespace {
 
 // The scalar pass without friction (StepRunner::solve_contact), restated as the
-// oracle: contacts one at a time in their order.
+// oracle: contacts one at a time in their order. A restatement shares any error of
+// what it restates, so HandComputedContacts below checks both it and the lanes
+// against impulses worked out by hand.
 bool solve_in_order(std::vector<ContactRecord>& contacts,
                     const std::vector<ContactWeights>& weights, std::vector<Vec2>& velocity,
                     bool first_iteration) {
@@ -118,6 +120,93 @@ void expect_lanes_match_order(Case c, int iterations) {
   for (std::size_t i = 0; i < c.contacts.size(); ++i) {
     ASSERT_TRUE(same_bits(c.contacts[i].impulse, oracle.contacts[i].impulse)) << "contact " << i;
   }
+}
+
+// Contacts whose outcome follows from the contact law alone (after the impulse the
+// pair closes at no more than its target, and the impulse never pulls), worked out
+// by hand. Velocities are of bodies 0 to 3; normals point from lower to upper.
+//   0: body 0 falls at (1, -3) onto a fixed floor, normal (0, -1), weight 1:
+//      closing = (0 - v0).n = -3, impulse = (0 - -3) * 1 = 3, v0 = (1, -3) - 3 (0, -1)
+//      = (1, 0): the fall stops, the slide is kept;
+//   1: bodies 1 (lower, at (0, 1)) and 2 (upper, at (0, -1)) meet head on, normal
+//      (0, 1), weights 1 and 1 (mass 1/2): closing = (-1 - 1) = -2, impulse = 2 * 1/2
+//      = 1, v1 = (0, 1) - 1 (0, 1) = 0 and v2 = (0, -1) + 1 (0, 1) = 0: equal masses
+//      stop, momentum (0 before) kept;
+//   2: body 3 rests on the floor, normal (0, -1), target 1 m/s apart: closing 0,
+//      impulse (1 - 0) * 1 = 1, v3 = (0, 0) - 1 (0, -1) = (0, 1);
+// Another iteration changes no impulse (each contact now closes at its target),
+// so it reports no change.
+TEST(ContactLanes, HandComputedContacts) {
+  if (!kHaveContactLanes) GTEST_SKIP() << "no SSE2";
+  Case c;
+  c.velocity = {{1.0, -3.0}, {0.0, 1.0}, {0.0, -1.0}, {0.0, 0.0}, {}};
+  const auto contact = [&](std::uint32_t lower, std::uint32_t upper, bool fixed, Vec2 n,
+                           double target, ContactWeights w) {
+    ContactRecord k{};
+    k.lower_pos = lower;
+    k.upper_pos = upper;
+    k.fixed = fixed;
+    k.normal = n;
+    k.target = target;
+    c.contacts.push_back(k);
+    c.weights.push_back(w);
+  };
+  contact(0, 0, true, {0.0, -1.0}, 0.0, {1.0, 0.0});
+  contact(1, 2, false, {0.0, 1.0}, 0.0, {1.0, 1.0});
+  contact(3, 0, true, {0.0, -1.0}, 1.0, {1.0, 0.0});
+  const std::vector<Vec2> want_velocity = {{1.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}, {0.0, 1.0}};
+  const std::vector<double> want_impulse = {3.0, 1.0, 1.0};
+
+  Case oracle = c;
+  EXPECT_TRUE(solve_in_order(oracle.contacts, oracle.weights, oracle.velocity, true));
+  EXPECT_FALSE(solve_in_order(oracle.contacts, oracle.weights, oracle.velocity, false));
+  ContactLanes lanes;
+  lanes.pack(c.contacts, c.weights, 4);
+  EXPECT_TRUE(lanes.iterate(c.velocity.data(), true));
+  EXPECT_FALSE(lanes.iterate(c.velocity.data(), false));
+  lanes.unpack(c.contacts);
+  for (std::uint32_t b = 0; b < 4; ++b) {
+    EXPECT_EQ(c.velocity[b], want_velocity[b]) << "lanes, body " << b;
+    EXPECT_EQ(oracle.velocity[b], want_velocity[b]) << "oracle, body " << b;
+  }
+  for (std::size_t i = 0; i < want_impulse.size(); ++i) {
+    EXPECT_EQ(c.contacts[i].impulse, want_impulse[i]) << "lanes, contact " << i;
+    EXPECT_EQ(oracle.contacts[i].impulse, want_impulse[i]) << "oracle, contact " << i;
+  }
+  EXPECT_EQ(c.velocity[4], Vec2{}) << "the shared zero of the fixed lanes";
+}
+
+// Separating pairs and warm starts, by hand:
+//   body 0 leaves the floor at (0, 2), normal (0, -1): closing = (0 - v0).n =
+//   (0, -2).(0, -1) = +2 (separating), impulse max(0 + (0 - 2) * 1, 0) = 0: unchanged;
+//   body 1 on the floor at rest, warm impulse 0.5: the first iteration applies it
+//   whatever the velocity, v1 = (0, 0) - 0.5 (0, -1) = (0, 0.5); the second finds
+//   closing = (0, -0.5).(0, -1) = +0.5, impulse max(0.5 + (0 - 0.5) * 1, 0) = 0:
+//   the warm impulse is taken back, v1 = (0, 0.5) + 0.5 (0, -1) = 0.
+TEST(ContactLanes, HandComputedSeparationAndWarmStart) {
+  if (!kHaveContactLanes) GTEST_SKIP() << "no SSE2";
+  Case c;
+  c.velocity = {{0.0, 2.0}, {0.0, 0.0}, {}};
+  for (std::uint32_t b = 0; b < 2; ++b) {
+    ContactRecord k{};
+    k.lower_pos = b;
+    k.fixed = true;
+    k.normal = {0.0, -1.0};
+    k.warm = b == 1 ? 0.5 : 0.0;
+    c.contacts.push_back(k);
+    c.weights.push_back({1.0, 0.0});
+  }
+  ContactLanes lanes;
+  lanes.pack(c.contacts, c.weights, 2);
+  EXPECT_TRUE(lanes.iterate(c.velocity.data(), true));
+  EXPECT_EQ(c.velocity[0], (Vec2{0.0, 2.0}));
+  EXPECT_EQ(c.velocity[1], (Vec2{0.0, 0.5}));
+  EXPECT_TRUE(lanes.iterate(c.velocity.data(), false));
+  EXPECT_EQ(c.velocity[0], (Vec2{0.0, 2.0}));
+  EXPECT_EQ(c.velocity[1], (Vec2{0.0, 0.0}));
+  lanes.unpack(c.contacts);
+  EXPECT_EQ(c.contacts[0].impulse, 0.0);
+  EXPECT_EQ(c.contacts[1].impulse, 0.0);
 }
 
 TEST(ContactLanes, MatchTheScalarPassBitForBit) {

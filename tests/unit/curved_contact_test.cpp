@@ -63,7 +63,10 @@ class SlidingOffACurve : public ::testing::TestWithParam<Support> {};
 // energy it lost by more than m*g*0.03 m. Measured: 0.025 m (circle) and 0.018 m
 // (corner), constant once it has left the curve: the position lags the velocity by
 // part of a step while the ball is on the curve. A ball hanging on the curve gains
-// about 4.7 m of height's worth in the first second.
+// about 4.7 m of height's worth in the first second: validated with the contact
+// at the sweep's stop switched off by hand (the world has no setting for it), the
+// excess was 4.01 m (circle) and 4.74 m (corner), the ball still 0.81 and 0.96 m
+// up after 1 s, and every bound of this test failed.
 TEST_P(SlidingOffACurve, BallSlidesOffWithoutGainingEnergy) {
   Perch p{World(awake_settings()), {}, {}};
   perch(p, GetParam(), 20.0, 0.0);
@@ -99,11 +102,20 @@ class StaticFriction : public ::testing::TestWithParam<Slope> {};
 // Coulomb's cone: a ball resting on a static circle at `degrees` from the top holds
 // still if tan(degrees) <= mu, else slides. With mu = 0.5 the cone is 26.57 degrees.
 // Held: within 2e-5 m of where it was put after 10 s (the slop pushes it out by
-// 1e-5 once). Sliding: more than 0.05 m in 1 s. Without static friction in the
-// position passes a held ball creeps down the slope by about g*dt^2/2*sin(angle) a step.
-TEST_P(StaticFriction, HoldsInsideTheConeAndSlidesOutside) {
-  const Slope slope = GetParam();
-  Perch p{World(awake_settings()), {}, {}};
+// 1e-5 once). Sliding: more than 0.05 m in 1 s (measured 0.094 and 0.60 m).
+// Static friction in the position passes is what holds it; the world has no setting
+// for it, so it was validated by switching it off by hand. With held support (the
+// default) the ball sinks into the slope only in its first step, static friction
+// acts once, and without it the ball slips 1.2e-4, 4.7e-4 and 9.6e-4 m at 5, 20 and
+// 45 degrees, but only the slop's 1e-5 m at 26: hence the runs without held support
+// too, where the ball sinks every step and, without static friction, creeps down
+// the slope (the velocity pass's contact friction slows the creep but cannot undo
+// it): 6.5e-4, 2.7e-3, 2.9e-3 and 7.0e-3 m in 10 s at 5, 20, 26 and 45 degrees
+// (1.0e-5 m with it, at every angle).
+void expect_holds_or_slides(const Slope& slope, bool hold_resting_support) {
+  WorldSettings settings = awake_settings();
+  settings.hold_resting_support = hold_resting_support;
+  Perch p{World(settings), {}, {}};
   perch(p, Support::Circle, slope.degrees, slope.mu);
   const int steps = slope.holds ? 600 : 60;
   for (int step = 0; step < steps; ++step) p.world.step(kDt);
@@ -116,6 +128,14 @@ TEST_P(StaticFriction, HoldsInsideTheConeAndSlidesOutside) {
   } else {
     EXPECT_GT(moved, 0.05);
   }
+}
+
+TEST_P(StaticFriction, HoldsInsideTheConeAndSlidesOutside) {
+  expect_holds_or_slides(GetParam(), true);
+}
+
+TEST_P(StaticFriction, HoldsInsideTheConeAndSlidesOutsideWithoutHeldSupport) {
+  expect_holds_or_slides(GetParam(), false);
 }
 
 INSTANTIATE_TEST_SUITE_P(Cone, StaticFriction,

@@ -12,23 +12,53 @@ namespace {
 
 constexpr double kDt = 1.0 / 60.0;
 
-class FrictionAtDtTimesK : public ::testing::TestWithParam<double> {
- protected:
-  double rate() const { return GetParam() / kDt; }  // k such that dt*k = GetParam()
+// dt*k, and e^-(dt*k) worked out by hand (to 40 digits with Python's decimal
+// module, independently of the C library's exp, then rounded to the nearest double):
+//   e^-0.5 = 0.6065306597126334236..., e^-1 = 0.3678794411714423215...,
+//   e^-2 = 0.1353352832366126918..., e^-50 = 1.928749847963917783...e-22.
+struct DecayCase {
+  double dt_k;
+  double decay;  // e^-(dt*k), by hand
 };
+
+class FrictionAtDtTimesK : public ::testing::TestWithParam<DecayCase> {
+ protected:
+  double dt_k() const { return GetParam().dt_k; }
+  double rate() const { return dt_k() / kDt; }  // k such that dt*k = dt_k()
+};
+
+// e^-x as 1 / (sum of x^n/n!): the series has no cancellation for x >= 0, and
+// uses no exp, so it checks the core's std::exp independently.
+double exp_minus_by_series(double x) {
+  double term = 1.0;
+  double sum = 1.0;
+  for (int n = 1; n < 400 && term > sum * 1e-18; ++n) {
+    term *= x / n;
+    sum += term;
+  }
+  return 1.0 / sum;
+}
 
 // rate()*kDt rounds back to dt*k within an ulp or two; exp turns that into a
 // relative difference of about dt*k ulps, hence the relative bound 1e-13.
 constexpr double kRounding = 1.0e-13;
 
+// The core computes exp(-k*dt); std::exp here restates it, so the hand value and
+// the series stand beside it as the independent checks.
 TEST_P(FrictionAtDtTimesK, DecayFactorIsExpOfMinusKDt) {
-  const double expected = std::exp(-GetParam());
-  EXPECT_NEAR(friction_decay_factor(rate(), kDt), expected, kRounding * expected);
+  const double factor = friction_decay_factor(rate(), kDt);
+  const double hand = GetParam().decay;
+  EXPECT_NEAR(factor, hand, kRounding * hand) << "against the hand value";
+  const double series = exp_minus_by_series(dt_k());
+  EXPECT_NEAR(series, hand, kRounding * hand) << "the series itself";
+  EXPECT_NEAR(factor, series, kRounding * series) << "against the series";
+  const double restated = std::exp(-dt_k());
+  EXPECT_NEAR(factor, restated, kRounding * restated) << "against std::exp";
 }
 
 TEST_P(FrictionAtDtTimesK, EqualsExactDecayWithinRounding) {
   for (const double v : {10.0, -10.0, 1.0e-3, -123.456}) {
-    const double expected = v * std::exp(-GetParam());
+    const double expected = v * GetParam().decay;
     EXPECT_NEAR(apply_friction(v, rate(), kDt), expected, kRounding * std::abs(expected))
         << "v=" << v;
   }
@@ -46,7 +76,11 @@ TEST_P(FrictionAtDtTimesK, NeverChangesSignNorGrows) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(HandPicked, FrictionAtDtTimesK, ::testing::Values(0.5, 1.0, 2.0, 50.0));
+INSTANTIATE_TEST_SUITE_P(HandPicked, FrictionAtDtTimesK,
+                         ::testing::Values(DecayCase{0.5, 0.6065306597126334},
+                                           DecayCase{1.0, 0.36787944117144233},
+                                           DecayCase{2.0, 0.1353352832366127},
+                                           DecayCase{50.0, 1.9287498479639178e-22}));
 
 TEST(Friction, HandComputedValues) {
   // dt*k = 0.5: 10 * e^-0.5 = 6.0653065971263...

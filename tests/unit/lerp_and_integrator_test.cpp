@@ -61,11 +61,34 @@ TEST(IntegrateAxis, NothingMovesWithoutVelocityOrAcceleration) {
 
 TEST(IntegrateAxis, SemiImplicitEulerAppliesFrictionFirst) {
   // The recipe: v = v*exp(-k dt); v += a dt; x += v dt. k = 2, dt = 0.5: factor e^-1.
+  // By hand (e^-1 = 0.36787944117144232160, to 20 digits): v1 = 2 e^-1 + 4*0.5 =
+  // 2.7357588823428846432; x1 = 1 + 0.5 v1 = 2.3678794411714423216. Friction
+  // after the acceleration would give 2 e^-1 + 2 e^-1 = 1.4715 instead.
   const double k = 2.0;
   const AxisMotion m = integrate_axis(Integrator::SemiImplicitEuler, kX, kV, kA, k, kStep);
+  EXPECT_DOUBLE_EQ(m.velocity, 2.7357588823428847);
+  EXPECT_DOUBLE_EQ(m.position, 2.3678794411714423);
+  // The recipe restated, beside the hand values.
   const double v1 = kV * std::exp(-1.0) + kA * kStep;
   EXPECT_DOUBLE_EQ(m.velocity, v1);
   EXPECT_DOUBLE_EQ(m.position, kX + v1 * kStep);
+}
+
+TEST(IntegrateAxis, SemiImplicitEulerStepsSumToTheClosedForm) {
+  // Without friction, n steps from x0, v0 give v_n = v0 + n a dt and
+  // x_n = x0 + dt (v_1 + ... + v_n) = x0 + n v0 dt + a dt^2 n (n + 1) / 2.
+  // x0 = 1, v0 = 2, a = 4, dt = 0.5, n = 4: v_4 = 2 + 8 = 10, x_4 = 1 + 4 + 10 = 15
+  // (exact in binary). Explicit Euler's n (n - 1) / 2 would give x_4 = 11, and the
+  // exact parabola's n^2 / 2 gives 13.
+  double x = kX;
+  double v = kV;
+  for (int n = 0; n < 4; ++n) {
+    const AxisMotion m = integrate_axis(Integrator::SemiImplicitEuler, x, v, kA, 0.0, kStep);
+    x = m.position;
+    v = m.velocity;
+  }
+  EXPECT_EQ(v, 10.0);
+  EXPECT_EQ(x, 15.0);
 }
 
 TEST(IntegrateAxis, ExactSolvesDecayWithConstantAcceleration) {
@@ -79,6 +102,10 @@ TEST(IntegrateAxis, ExactSolvesDecayWithConstantAcceleration) {
   const AxisMotion decaying = integrate_axis(Integrator::Exact, kX, 6.0, kA, 2.0, kStep);
   EXPECT_DOUBLE_EQ(decaying.velocity, 2.0 + 4.0 * std::exp(-1.0));
   EXPECT_DOUBLE_EQ(decaying.position, 2.0 + 2.0 * (1.0 - std::exp(-1.0)));
+  // By hand (e^-1 = 0.36787944117144232160): 3.4715177646857692864 and
+  // 3.2642411176571153568.
+  EXPECT_DOUBLE_EQ(decaying.velocity, 3.4715177646857693);
+  EXPECT_DOUBLE_EQ(decaying.position, 3.2642411176571153);
 }
 
 TEST(IntegrateAxis, ExactWithFrictionOnlyTravelsTheDecayDistance) {
@@ -86,6 +113,10 @@ TEST(IntegrateAxis, ExactWithFrictionOnlyTravelsTheDecayDistance) {
   const AxisMotion m = integrate_axis(Integrator::Exact, kX, kV, 0.0, 4.0, kStep);
   EXPECT_DOUBLE_EQ(m.velocity, 2.0 * std::exp(-2.0));
   EXPECT_DOUBLE_EQ(m.position, 1.0 + 0.5 * (1.0 - std::exp(-2.0)));
+  // By hand (e^-2 = 0.13533528323661269189): 0.2706705664732253838 and
+  // 1.43233235838169365405.
+  EXPECT_DOUBLE_EQ(m.velocity, 0.2706705664732254);
+  EXPECT_DOUBLE_EQ(m.position, 1.4323323583816936);
 }
 
 TEST(PositionAt, StartsAtXAndEndsWhereTheStepEnds) {

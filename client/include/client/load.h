@@ -24,6 +24,9 @@ struct LoadConfig {
   double acceleration = 5.0;
   // Still bots send no inputs: they only watch (and acknowledge, and keep alive).
   bool still = false;
+  // Snapshots taken for this long after connecting, before the measurement starts
+  // (a still bot's own body settles in it).
+  std::chrono::milliseconds settle{0};
 };
 
 struct LoadReport {

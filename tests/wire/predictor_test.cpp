@@ -1,0 +1,212 @@
+// The predictor and the reconstruction both ends run (docs/PROTOCOL.md, section 5):
+// the worked example of the page, computed here and found there byte for byte, and
+// every malformed snapshot refused before it changes anything.
+#include "wire/predictor.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "wire/framing.h"
+#include "wire/reconstruction.h"
+
+namespace {
+
+std::string protocol_page() {
+  std::ifstream in(PHYSICS_DOCS_DIR "/PROTOCOL.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Every "On the wire: `...`" of the page, in order.
+std::vector<std::string> wire_examples(const std::string& page) {
+  std::vector<std::string> found;
+  const std::string marker = "On the wire: `";
+  for (std::size_t at = page.find(marker); at != std::string::npos;
+       at = page.find(marker, at + 1)) {
+    const std::size_t start = at + marker.size();
+    found.push_back(page.substr(start, page.find('`', start) - start));
+  }
+  return found;
+}
+
+std::string hex_bytes(const std::string& bytes) {
+  std::string out;
+  for (const char c : bytes) {
+    char buffer[4];
+    std::snprintf(buffer, sizeof buffer, "%02x ", static_cast<unsigned char>(c));
+    out += buffer;
+  }
+  if (!out.empty()) out.pop_back();
+  return out;
+}
+
+std::string hex_bits(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "0x%016llx",
+                static_cast<unsigned long long>(std::bit_cast<std::uint64_t>(value)));
+  return buffer;
+}
+
+physics::wire::Snapshot exact_snapshot(std::uint64_t tick, std::uint64_t id, double x, double y,
+                                       double vx, double vy) {
+  physics::wire::Snapshot s;
+  s.set_tick(tick);
+  auto* e = s.mutable_exact();
+  e->add_id_gaps(id);
+  e->add_x(x);
+  e->add_y(y);
+  e->add_vx(vx);
+  e->add_vy(vy);
+  return s;
+}
+
+TEST(Predictor, TheWorkedExampleOfTheProtocolPage) {
+  const std::string page = protocol_page();
+  ASSERT_FALSE(page.empty());
+  const wire::Predictor predictor(60.0, 0.0, -9.81);
+  const wire::Quantum quantum{0.001, 0.001};
+  EXPECT_NE(page.find(hex_bits(predictor.dt())), std::string::npos);
+  EXPECT_NE(page.find(hex_bits((0.5 * predictor.dt()) * predictor.dt())), std::string::npos);
+
+  wire::PredictedBody body{7, 1.5, 2.0, 3.0, 4.0, wire::PredictorMode::Ballistic};
+  for (int tick = 11; tick <= 12; ++tick) {
+    predictor.advance(body);
+    EXPECT_NE(page.find(hex_bits(body.x)), std::string::npos) << "x after tick " << tick;
+    EXPECT_NE(page.find(hex_bits(body.y)), std::string::npos) << "y after tick " << tick;
+    EXPECT_NE(page.find(hex_bits(body.vy)), std::string::npos) << "vy after tick " << tick;
+  }
+
+  wire::Reconstruction held;
+  ASSERT_EQ(held.apply(exact_snapshot(10, 7, 1.5, 2.0, 3.0, 4.0), predictor, quantum), "");
+  physics::wire::ServerMessage message;
+  physics::wire::Snapshot& s = *message.mutable_snapshot();
+  s.set_tick(12);
+  auto* q = s.mutable_quantized();
+  q->add_id_gaps(7);
+  q->add_dx(12);
+  q->add_dy(-7);
+  q->add_dvx(0);
+  q->add_dvy(-164);
+  wire::Reconstruction after = held;
+  ASSERT_EQ(after.apply(s, predictor, quantum), "");
+  const wire::PredictedBody& got = after.bodies().at(0);
+  for (const double v : {got.x, got.y, got.vx, got.vy}) {
+    EXPECT_NE(page.find(hex_bits(v)), std::string::npos) << v;
+  }
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "0x%016llx", static_cast<unsigned long long>(after.hash()));
+  EXPECT_NE(page.find(hash), std::string::npos) << hash;
+  s.set_view_hash(after.hash());
+  const std::vector<std::string> examples = wire_examples(page);
+  ASSERT_EQ(examples.size(), 3u);
+  EXPECT_EQ(hex_bytes(wire::encode_frame(message)), examples[2]);
+}
+
+TEST(Predictor, ModesMoveTheBodyAsTheTableSays) {
+  const wire::Predictor predictor(50.0, 1.0, -10.0);
+  wire::PredictedBody glide{1, 0.0, 0.0, 2.0, -1.0, wire::PredictorMode::Glide};
+  predictor.advance(glide);
+  EXPECT_EQ(glide.x, 2.0 * 0.02);
+  EXPECT_EQ(glide.y, -1.0 * 0.02);
+  EXPECT_EQ(glide.vy, -1.0);
+  wire::PredictedBody hold{1, 5.0, 6.0, 2.0, -1.0, wire::PredictorMode::Hold};
+  predictor.advance(hold);
+  EXPECT_EQ(hold.x, 5.0);
+  EXPECT_EQ(hold.vx, 2.0);
+  // Ballistic from rest for one tick: x = g * dt^2 / 2, v = g * dt (hand-computed:
+  // dt = 0.02, dt^2 / 2 = 0.0002).
+  wire::PredictedBody fall{1, 0.0, 0.0, 0.0, 0.0, wire::PredictorMode::Ballistic};
+  predictor.advance(fall);
+  EXPECT_NEAR(fall.y, -0.002, 1e-18);
+  EXPECT_NEAR(fall.vy, -0.2, 1e-16);
+  EXPECT_NEAR(fall.x, 0.0002, 1e-19);
+}
+
+TEST(Reconstruction, RecordsReplaceAddAndLeaveInIdOrder) {
+  const wire::Predictor predictor(60.0, 0.0, 0.0);
+  wire::Reconstruction held;
+  physics::wire::Snapshot s = exact_snapshot(1, 4, 1.0, 2.0, 0.0, 0.0);
+  s.mutable_exact()->add_id_gaps(3);  // body 7
+  for (auto* list : {s.mutable_exact()->mutable_x(), s.mutable_exact()->mutable_y(),
+                     s.mutable_exact()->mutable_vx(), s.mutable_exact()->mutable_vy()}) {
+    list->Add(0.5);
+  }
+  s.mutable_exact()->add_modes((1u << 2) | 2u);  // record 1 (body 7): Hold
+  ASSERT_EQ(held.apply(s, predictor, {}), "");
+  ASSERT_EQ(held.bodies().size(), 2u);
+  EXPECT_EQ(held.bodies()[1].mode, wire::PredictorMode::Hold);
+  physics::wire::Snapshot next;
+  next.set_tick(2);
+  next.add_left_gaps(4);
+  ASSERT_EQ(held.apply(next, predictor, {}), "");
+  ASSERT_EQ(held.bodies().size(), 1u);
+  EXPECT_EQ(held.bodies()[0].id, 7u);
+  EXPECT_EQ(held.bodies()[0].x, 0.5);  // held: it did not move with its velocity
+  EXPECT_EQ(held.tick(), 2u);
+}
+
+TEST(Reconstruction, MalformedSnapshotsAreRefusedAndChangeNothing) {
+  const wire::Predictor predictor(60.0, 0.0, -9.81);
+  wire::Reconstruction held;
+  ASSERT_EQ(held.apply(exact_snapshot(5, 2, 1.0, 1.0, 1.0, 1.0), predictor, {}), "");
+  const std::uint64_t before = held.hash();
+  std::vector<physics::wire::Snapshot> bad;
+  {
+    physics::wire::Snapshot s;  // lists of different lengths
+    s.set_tick(6);
+    s.mutable_quantized()->add_id_gaps(2);
+    s.mutable_quantized()->add_dx(1);
+    bad.push_back(s);
+  }
+  {
+    physics::wire::Snapshot s = exact_snapshot(6, 3, 0, 0, 0, 0);  // ids not ascending
+    auto* e = s.mutable_exact();
+    e->add_id_gaps(0);
+    e->add_x(0);
+    e->add_y(0);
+    e->add_vx(0);
+    e->add_vy(0);
+    bad.push_back(s);
+  }
+  {
+    physics::wire::Snapshot s = exact_snapshot(6, 3, 0, 0, 0, 0);
+    s.mutable_exact()->add_modes(3);  // mode 3 does not exist
+    bad.push_back(s);
+  }
+  {
+    physics::wire::Snapshot s = exact_snapshot(6, 3, 0, 0, 0, 0);
+    s.mutable_exact()->add_modes((1u << 2) | 1u);  // names record 1 of 1
+    bad.push_back(s);
+  }
+  {
+    physics::wire::Snapshot s = exact_snapshot(6, 3, std::nan(""), 0, 0, 0);
+    bad.push_back(s);
+  }
+  bad.push_back(exact_snapshot(4, 3, 0, 0, 0, 0));                          // tick goes back
+  bad.push_back(exact_snapshot(5 + wire::kMaxTickGap + 1, 3, 0, 0, 0, 0));  // a jump
+  {
+    physics::wire::Snapshot s = exact_snapshot(6, 3, 0, 0, 0, 0);
+    s.mutable_exact()->set_id_gaps(0, UINT64_MAX);
+    s.mutable_exact()->add_id_gaps(2);  // overflows 64 bits
+    for (auto* list : {s.mutable_exact()->mutable_x(), s.mutable_exact()->mutable_y(),
+                       s.mutable_exact()->mutable_vx(), s.mutable_exact()->mutable_vy()}) {
+      list->Add(0.0);
+    }
+    bad.push_back(s);
+  }
+  for (std::size_t i = 0; i < bad.size(); ++i) {
+    EXPECT_NE(held.apply(bad[i], predictor, {}), "") << "case " << i;
+    EXPECT_EQ(held.hash(), before) << "case " << i;
+    EXPECT_EQ(held.tick(), 5u) << "case " << i;
+  }
+}
+
+}  // namespace
