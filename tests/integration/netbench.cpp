@@ -199,9 +199,11 @@ int main(int argc, char** argv) {
                 ? static_cast<double>(report.records) / static_cast<double>(report.snapshots)
                 : 0.0;
         fmt::print(
-            "| {} | {} | {} ({}) | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.4f} | {:.3f} | "
+            "| {} | {} | {} ({}) | {:.1f} | {} | {:.1f} | {:.1f} | {:.4f} | {:.3f} | "
             "{:.3f} | {} | {} |\n",
-            run.scene.name, encoding_name, bots, report.bots_connected, kbit, bits_per_body,
+            run.scene.name, encoding_name, bots, report.bots_connected, kbit,
+            // No body sent in the run: no bits per body to speak of.
+            report.records > 0 ? fmt::format("{:.1f}", bits_per_body) : std::string("-"),
             bodies_per_snapshot, report.snapshots_per_second_mean, stats.max_view_error, mean_ms,
             p99_ms, still ? std::string("-") : fmt::format("{:.2f}", report.latency_median_ms),
             still ? std::string("-") : fmt::format("{:.2f}", report.latency_p99_ms));

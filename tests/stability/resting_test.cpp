@@ -46,7 +46,8 @@ TEST(Resting, WedgedBallComesExactlyToRest) {
 // Held support, measured where it acts: a ball resting in a pocket between two
 // static balls whose contacts are 30 degrees from vertical (both support it).
 // Without held support it sinks by g*dt^2/2 into both every step and is pushed back
-// out along the two normals; the pushes do not cancel exactly, and it wanders.
+// out along the two normals, which leaves it anywhere within about a slop (1e-5 m)
+// of where it rested.
 // Bound: from 0.5 s to 10.5 s it moves less than 1e-9 m. Measured: 1.2e-19 m with
 // held support, 1.14e-5 m without (1.0e-5 to 1.4e-5 at 20 to 70 degrees).
 double pocket_drift(bool hold) {
@@ -142,7 +143,7 @@ class SmallPiles : public ::testing::TestWithParam<SmallPile> {};
 // The last two cases (1,200 circles; 300 without friction) took 11.63 s and
 // 16.90 s before piles fell asleep from the bottom up (docs/PHYSICS.md, "Sleep").
 // The world has no setting for that; with it switched off in the current core (by
-// hand, not committed) they took 8.03 s and never (1,968 of 2,000 awake at 40 s),
+// hand, not committed) they took 8.03 s and never (still awake at 40 s),
 // against 6.92 s and 10.18 s with it: hence bounds of 7.5 s and 13.5 s.
 TEST_P(SmallPiles, FallAsleepAndStayAsleep) {
   const SmallPile pile = GetParam();

@@ -1,5 +1,4 @@
 #include "physics/broadphase.h"
-#include <cstdlib>
 
 #include <algorithm>
 #include <cmath>
@@ -181,7 +180,7 @@ void UniformGrid::find_pairs(std::vector<BodyPair>& out) const {
         ranges[range_count][0] = cell_start_[cell + 1];
         ranges[range_count++][1] = cell_start_[cell + 2];
       }
-      if (cy + 1 < rows_ && std::getenv("H27_GRID_MISS") == nullptr) {
+      if (cy + 1 < rows_) {
         const std::uint32_t above = cell + static_cast<std::uint32_t>(columns_);
         const std::uint32_t west = cx > 0 ? above - 1 : above;
         const std::uint32_t east = cx + 1 < columns_ ? above + 1 : above;

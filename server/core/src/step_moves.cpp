@@ -128,7 +128,7 @@ inline void StepRunner::sweep(std::uint32_t p, Body& b, int axis, AxisPath& path
       // gathering speed instead of sliding off it.
       component(b.position, axis) = touching;
       const Vec2 n = touching_normal(b, body(hit_body), axis, inside < 0.0 ? -1.0 : 1.0);
-      if (!H27("H27_NO_SWEEP_CONTACT")) record_contact(hit_candidate, n);
+      record_contact(hit_candidate, n);
       return;
     }
     const AxisMotion rest =

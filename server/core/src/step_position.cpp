@@ -120,7 +120,7 @@ inline void StepRunner::collide_boxes_on() {
     // Resolve on this axis only if it is the shallower one. Otherwise a box that
     // sank a little into a floor tile would be thrown sideways by the tile's
     // width (catching on seams), or lifted by a neighbour's height.
-    if (depth > across && !H27("H27_NO_SHALLOW")) return false;
+    if (depth > across) return false;
     return separate(cand, a, b, n, depth);
   });
   w_.counters.box_box_tests += tests;
@@ -165,7 +165,7 @@ void StepRunner::collide_on_x() {
     if (!contact.colliding) return false;
     const double depth = contact.penetration - grown;
     if (depth < 0.0) {
-      if (corner && -depth > margin && !H27("H27_NO_CORNER")) return false;
+      if (corner && -depth > margin) return false;
       record_near_miss(cand, contact.normal, -depth);
       return false;
     }
@@ -198,7 +198,7 @@ inline bool StepRunner::separate(const Candidate& cand, Body& a, Body& b, Vec2 n
   if (depth == 0.0 && !(push > 0.0)) return false;
   a.position -= n * (push * wa);
   b.position += n * (push * wb);
-  if (!H27("H27_NO_STATIC_FRICTION") && any_contact_friction_ && a.contact_friction > 0.0 && b.contact_friction > 0.0) {
+  if (any_contact_friction_ && a.contact_friction > 0.0 && b.contact_friction > 0.0) {
     hold_by_static_friction(cand, a, b, n, push, wa, wb);
   }
   // Only pushes against something immovable (a static or sleeping body, or a
@@ -242,7 +242,6 @@ inline void StepRunner::hold_by_static_friction(const Candidate& cand, Body& a, 
 // neighbours, and the more friction the deeper: up to 0.096 m in hard case 6's
 // pile at friction 5 (docs/PHYSICS.md, "Squeezes at high friction").
 inline bool StepRunner::may_undo_slide(const Body& body, Vec2 undo) const {
-  if (H27("H27_NO_SQUEEZE")) return true;
   const Vec2 drive = driving_acceleration(body);
   if (drive.x == 0.0 && drive.y == 0.0) return false;
   return dot(undo, drive) <= 0.0;

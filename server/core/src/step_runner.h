@@ -15,8 +15,6 @@
 #include "physics/formulas.h"
 #include "sweep.h"
 #include "world_impl.h"
-#include <cstdlib>
-#define H27(name) ([] { static const bool v = std::getenv(name) != nullptr; return v; }())
 
 namespace phys {
 
@@ -31,7 +29,7 @@ class StepRunner {
         rest_speed_(s_.rest_speed > 0.0 ? s_.rest_speed : 2.0 * length(s_.gravity) * h),
         shock_(s_.shock_propagation && gravity_on_),
         hold_(s_.hold_resting_support && gravity_on_),
-        speculative_margin_(H27("H27_NO_SPEC") ? 0.0 : 0.5 * length(s_.gravity) * h * h),
+        speculative_margin_(0.5 * length(s_.gravity) * h * h),
         // (Never, for a limit so large that its square would overflow.)
         surely_slow_(s_.max_speed < 1.0e150 ? (0.5 * s_.max_speed) * (0.5 * s_.max_speed) : -1.0) {}
 

@@ -96,7 +96,7 @@ void StepRunner::update_sleep() {
   auto& asleep = w_.goes_to_sleep_;
   asleep.resize(n);
   for (std::uint32_t p = 0; p < n; ++p) asleep[p] = island_ready[root(p)];
-  if (gravity_on_ && !H27("H27_NO_BOTTOM_UP")) sleep_from_the_bottom(asleep);  // no "below" without gravity
+  if (gravity_on_) sleep_from_the_bottom(asleep);  // no "below" without gravity
   for (std::uint32_t p = 0; p < n; ++p) {
     if (!asleep[p]) continue;
     Body& b = body(w_.active_[p]);
