@@ -83,6 +83,32 @@ PredictorMode choose_mode(const wire::Predictor& predictor, const TruthBody& t,
   return best_miss < 0.5 * kept ? best : current;
 }
 
+// Appends exact records: ids as gaps from the one before, and a mode entry
+// ((index gap << 2) | mode) for each record whose mode changes.
+class ExactWriter {
+ public:
+  explicit ExactWriter(physics::wire::ExactBodies& list) : list_(list) {}
+  void add(std::uint64_t id, double x, double y, double vx, double vy, bool mode_changes,
+           PredictorMode mode) {
+    const auto index = static_cast<std::uint32_t>(list_.id_gaps_size());
+    list_.add_id_gaps(id - last_id_);
+    last_id_ = id;
+    list_.add_x(x);
+    list_.add_y(y);
+    list_.add_vx(vx);
+    list_.add_vy(vy);
+    if (mode_changes) {
+      list_.add_modes(((index - last_mode_) << 2) | static_cast<std::uint32_t>(mode));
+      last_mode_ = index;
+    }
+  }
+
+ private:
+  physics::wire::ExactBodies& list_;
+  std::uint64_t last_id_ = 0;
+  std::uint32_t last_mode_ = 0;  // record index of the last mode entry
+};
+
 std::size_t varint_bytes(std::uint64_t v) {
   std::size_t n = 1;
   for (; v >= 0x80; v >>= 7) ++n;
@@ -240,10 +266,9 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
   // The records, ascending id; ids as gaps from the one before.
   physics::wire::QuantizedBodies& quantized = *message_.mutable_quantized();
   physics::wire::ExactBodies& exact_list = *message_.mutable_exact();
+  ExactWriter exact_writer(exact_list);
   std::uint64_t last_quantized = 0;
-  std::uint64_t last_exact = 0;
   std::uint32_t last_quantized_mode = 0;  // record index of the last mode entry
-  std::uint32_t last_exact_mode = 0;
   const PredictedBody zero{};
   for (const Candidate& c : candidates) {
     const TruthBody& t = *c.truth;
@@ -258,17 +283,7 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
     const bool fits = std::all_of(std::begin(d), std::end(d),
                                   [](double v) { return std::fabs(v) < kMaxQuantizedDelta; });
     if (exact || !fits) {
-      const auto index = static_cast<std::uint32_t>(exact_list.id_gaps_size());
-      exact_list.add_id_gaps(t.id - last_exact);
-      last_exact = t.id;
-      exact_list.add_x(t.x);
-      exact_list.add_y(t.y);
-      exact_list.add_vx(t.vx);
-      exact_list.add_vy(t.vy);
-      if (mode_changes) {
-        exact_list.add_modes(((index - last_exact_mode) << 2) | static_cast<std::uint32_t>(mode));
-        last_exact_mode = index;
-      }
+      exact_writer.add(t.id, t.x, t.y, t.vx, t.vy, mode_changes, mode);
     } else {
       const auto index = static_cast<std::uint32_t>(quantized.id_gaps_size());
       quantized.add_id_gaps(t.id - last_quantized);
@@ -314,20 +329,9 @@ const std::string& View::full_state() {
   if (settings_.state_hash) full.set_state_hash(state_hash_);
   full.set_full(true);
   physics::wire::ExactBodies& list = *full.mutable_exact();
-  std::uint64_t last = 0;
-  std::uint32_t last_mode = 0;
+  ExactWriter writer(list);
   for (const PredictedBody& b : mirror_.bodies()) {
-    const auto index = static_cast<std::uint32_t>(list.id_gaps_size());
-    list.add_id_gaps(b.id - last);
-    last = b.id;
-    list.add_x(b.x);
-    list.add_y(b.y);
-    list.add_vx(b.vx);
-    list.add_vy(b.vy);
-    if (b.mode != PredictorMode::Ballistic) {
-      list.add_modes(((index - last_mode) << 2) | static_cast<std::uint32_t>(b.mode));
-      last_mode = index;
-    }
+    writer.add(b.id, b.x, b.y, b.vx, b.vy, b.mode != PredictorMode::Ballistic, b.mode);
   }
   if (list.id_gaps_size() == 0) full.clear_exact();
   full.set_view_hash(mirror_.hash());

@@ -2,12 +2,10 @@
 // against the real encoder, so that the document cannot drift from the wire.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "protocol_page.h"
 #include "wire.pb.h"
 #include "wire/framing.h"
 #include "wire/messages.h"
@@ -15,31 +13,10 @@
 namespace itest {
 namespace {
 
-std::string hex(const std::string& bytes) {
-  std::string out;
-  for (const char c : bytes) {
-    char buffer[4];
-    std::snprintf(buffer, sizeof buffer, "%02x ", static_cast<unsigned char>(c));
-    out += buffer;
-  }
-  if (!out.empty()) out.pop_back();
-  return out;
-}
+using protocol_page::hex;
 
-// Every "On the wire: `...`" of the page, in order.
 std::vector<std::string> page_examples() {
-  std::ifstream in(PHYSICS_DOCS_DIR "/PROTOCOL.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string page = text.str();
-  std::vector<std::string> found;
-  const std::string marker = "On the wire: `";
-  for (std::size_t at = page.find(marker); at != std::string::npos;
-       at = page.find(marker, at + 1)) {
-    const std::size_t start = at + marker.size();
-    found.push_back(page.substr(start, page.find('`', start) - start));
-  }
-  return found;
+  return protocol_page::wire_examples(protocol_page::text());
 }
 
 TEST(ProtocolDoc, HelloExampleBytes) {

@@ -8,45 +8,14 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "protocol_page.h"
 #include "wire/framing.h"
 #include "wire/reconstruction.h"
 
 namespace {
-
-std::string protocol_page() {
-  std::ifstream in(PHYSICS_DOCS_DIR "/PROTOCOL.md");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// Every "On the wire: `...`" of the page, in order.
-std::vector<std::string> wire_examples(const std::string& page) {
-  std::vector<std::string> found;
-  const std::string marker = "On the wire: `";
-  for (std::size_t at = page.find(marker); at != std::string::npos;
-       at = page.find(marker, at + 1)) {
-    const std::size_t start = at + marker.size();
-    found.push_back(page.substr(start, page.find('`', start) - start));
-  }
-  return found;
-}
-
-std::string hex_bytes(const std::string& bytes) {
-  std::string out;
-  for (const char c : bytes) {
-    char buffer[4];
-    std::snprintf(buffer, sizeof buffer, "%02x ", static_cast<unsigned char>(c));
-    out += buffer;
-  }
-  if (!out.empty()) out.pop_back();
-  return out;
-}
 
 std::string hex_bits(double value) {
   char buffer[32];
@@ -69,7 +38,7 @@ physics::wire::Snapshot exact_snapshot(std::uint64_t tick, std::uint64_t id, dou
 }
 
 TEST(Predictor, TheWorkedExampleOfTheProtocolPage) {
-  const std::string page = protocol_page();
+  const std::string page = protocol_page::text();
   ASSERT_FALSE(page.empty());
   const wire::Predictor predictor(60.0, 0.0, -9.81);
   const wire::Quantum quantum{0.001, 0.001};
@@ -105,9 +74,9 @@ TEST(Predictor, TheWorkedExampleOfTheProtocolPage) {
   std::snprintf(hash, sizeof hash, "0x%016llx", static_cast<unsigned long long>(after.hash()));
   EXPECT_NE(page.find(hash), std::string::npos) << hash;
   s.set_view_hash(after.hash());
-  const std::vector<std::string> examples = wire_examples(page);
+  const std::vector<std::string> examples = protocol_page::wire_examples(page);
   ASSERT_EQ(examples.size(), 3u);
-  EXPECT_EQ(hex_bytes(wire::encode_frame(message)), examples[2]);
+  EXPECT_EQ(protocol_page::hex(wire::encode_frame(message)), examples[2]);
 }
 
 TEST(Predictor, ModesMoveTheBodyAsTheTableSays) {
