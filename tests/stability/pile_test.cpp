@@ -6,7 +6,7 @@
 //   nothing becomes NaN or infinite, checked every 10 steps;
 //   after settling (30 s with contact friction, 75 s without), every circle is
 //   asleep, and no two circles (nor a circle and the container) overlap by more
-//   than 0.003 m with contact friction, 0.01 m (hard case 6's bound) without;
+//   than 0.003 m with contact friction, 0.01 m (the 16,000-circle pile's bound) without;
 //   once asleep, the pile stays asleep for 10 s more: no circle wakes, none moves
 //   (positions equal to the bit), and the kinetic energy is exactly 0.
 #include <gtest/gtest.h>

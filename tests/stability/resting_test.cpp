@@ -212,7 +212,7 @@ DeepResult settle_deep_pile(double mu, const WorldSettings& settings) {
 
 class DeepPiles : public ::testing::TestWithParam<DeepPile> {};
 
-// Bounds: with friction 0.002 m; without, hard case 6's 0.01 m, and every circle
+// Bounds: with friction 0.002 m; without, the 16,000-circle pile's 0.01 m, and every circle
 // asleep at 40 s. Each guards a mechanism, measured with and without it (the
 // mechanisms but held support have no setting: they were switched off by hand in
 // the current core, not committed):
