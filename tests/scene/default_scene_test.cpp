@@ -1,9 +1,10 @@
 // The built-in scene and the examples in scenes/ load, build worlds, and run the
-// same way twice.
+// same way twice, to golden state hashes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,13 @@ TEST(DefaultScene, RunsToTheSameHashTwice) {
   const sim::RunSummary first = sim::run_scene(default_scene(), options);
   const sim::RunSummary second = sim::run_scene(default_scene(), options);
   EXPECT_EQ(first.state_hash, second.state_hash);
+  // Golden: the default scene's state hash after 300 steps, measured once (the same
+  // value physics_sim_cli_test.cmake holds physics-sim to). Two runs drifting the
+  // same way pass the comparison above but not this. The hash is promised to be the
+  // same for every compiler and build type; a change of it means the results of the
+  // step changed, and the change that does it must say so and update this value.
+  constexpr std::uint64_t kGoldenHash = 0x2caca79e4e5749cbull;
+  EXPECT_EQ(first.state_hash, kGoldenHash) << std::hex << "measured 0x" << first.state_hash;
   EXPECT_EQ(first.steps, 300u);
   // The hash moved: something in the scene did fall or roll.
   EXPECT_NE(first.state_hash, build_world(default_scene()).state_hash());
@@ -113,6 +121,19 @@ TEST(ExampleScenes, EveryFileInScenesLoadsAndBuilds) {
 }
 
 TEST(ExampleScenes, EveryFileRunsToTheSameHashTwice) {
+  // Golden: each file's state hash after 30 steps, measured once. Two runs drifting
+  // the same way pass the comparison of the two but not this. The hash is promised
+  // to be the same for every compiler and build type; a change of one means the
+  // results of the step (or the scene file) changed, and the change that does it
+  // must say so and update the value here. A new file needs its value added.
+  const std::map<std::string, std::uint64_t> golden = {
+      {"box-pyramid.textproto", 0xd8d1d1fe0293ce38ull},
+      {"circle-pile.textproto", 0xcdd56b89d4c3b63bull},
+      {"default.textproto", 0xe061646d8cb4dbb9ull},
+      {"large-4000.textproto", 0x86da865e12834da6ull},
+      {"moving-1000.textproto", 0x99d7e7c9c55ad2b8ull},
+      {"platformer.textproto", 0xe426fe342b13762bull},
+  };
   for (const auto& file : example_files()) {
     SCOPED_TRACE(file.string());
     SceneResult result = load_scene_file(file);
@@ -121,7 +142,14 @@ TEST(ExampleScenes, EveryFileRunsToTheSameHashTwice) {
     sim::RunOptions options;
     options.steps = 30;
     options.dt = fixed_dt(def);
-    EXPECT_EQ(sim::run_scene(def, options).state_hash, sim::run_scene(def, options).state_hash);
+    const std::uint64_t hash = sim::run_scene(def, options).state_hash;
+    EXPECT_EQ(hash, sim::run_scene(def, options).state_hash);
+    const auto it = golden.find(file.filename().string());
+    if (it == golden.end()) {
+      ADD_FAILURE() << "no golden hash for this file; measured 0x" << std::hex << hash;
+      continue;
+    }
+    EXPECT_EQ(hash, it->second) << std::hex << "measured 0x" << hash;
   }
 }
 

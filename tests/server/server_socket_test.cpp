@@ -237,22 +237,33 @@ TEST(ServerSocket, ClientThatNeverReadsHoldsItsWindowAndIsDroppedAsTooSlow) {
   ASSERT_TRUE(reader.join("reader"));
   SocketClient sleeper(running.port(), 4096);
   sleeper.send(server_test::full_view_hello("sleeper"));  // then never reads
+  // Margins, in wall time by the steady clock, so that a slow machine or
+  // ThreadSanitizer changes only how long this takes: both clients ping whenever a
+  // quarter of idle_timeout has passed (4x margin against being dropped as idle;
+  // the sleeper sends, so it is "too slow", not "idle"), and the drop is awaited
+  // for 25 timeouts (the window fills in 64 ticks, 0.13 s; then one timeout).
+  const auto keep_alive = config.idle_timeout / 4;
+  const auto deadline = std::chrono::steady_clock::now() + 25 * config.idle_timeout;
+  auto next_ping = std::chrono::steady_clock::now();
   std::uint64_t last_tick = 0;
+  std::uint64_t nonce = 0;
   bool dropped = false;
-  for (int i = 0; i < 5000 && !dropped; ++i) {
+  while (!dropped && std::chrono::steady_clock::now() < deadline) {
+    if (std::chrono::steady_clock::now() >= next_ping) {
+      physics::wire::ClientMessage ping;
+      ping.mutable_ping()->set_nonce(++nonce);
+      reader.send(ping);
+      sleeper.send(ping);
+      next_ping = std::chrono::steady_clock::now() + keep_alive;
+    }
     const auto snapshot = next_snapshot(reader);
     ASSERT_TRUE(snapshot);
     EXPECT_GT(snapshot->tick(), last_tick);
     last_tick = snapshot->tick();
-    if (i % 50 == 0) {
-      physics::wire::ClientMessage ping;
-      ping.mutable_ping()->set_nonce(static_cast<std::uint64_t>(i));
-      reader.send(ping);
-      sleeper.send(ping);  // the sleeper sends, so it is "too slow", not "idle"
-    }
     dropped = drops(running.server, server::DropReason::TooSlow) == 1;
   }
   EXPECT_TRUE(dropped);
+  EXPECT_EQ(drops(running.server, server::DropReason::Idle), 0u);
   const auto stats = running.server.stats();
   // Its window (64) filled, and then its ticks were skipped rather than queued.
   EXPECT_GT(stats.skipped_snapshots, 0u);
@@ -267,14 +278,29 @@ TEST(ServerSocket, ClientThatSendsNothingIsDroppedAsIdle) {
   server::ServerConfig config;
   config.idle_timeout = 300ms;
   RunningServer running(config);
+  // The server's idle clock starts no earlier than the connect, so the Error cannot
+  // come sooner than one timeout after this; every wait for it or for the drop is
+  // bounded by 20 timeouts (6 s), a margin for a slow machine or ThreadSanitizer.
+  const auto connected = std::chrono::steady_clock::now();
+  const auto margin = 20 * config.idle_timeout;
   SocketClient quiet(running.port());
   ASSERT_TRUE(quiet.join("quiet"));
-  const auto error = next_error(quiet);
+  std::optional<physics::wire::Error> error;
+  for (auto left = margin; !error && left > 0ms;
+       left = std::chrono::duration_cast<std::chrono::milliseconds>(
+           connected + margin - std::chrono::steady_clock::now())) {
+    const auto message = quiet.receive(left);  // snapshots (not acknowledged), the Error
+    if (!message) break;
+    if (message->has_error()) error = message->error();
+  }
+  const auto waited = std::chrono::steady_clock::now() - connected;
   ASSERT_TRUE(error);
   EXPECT_EQ(error->code(), physics::wire::ERROR_TOO_SLOW);
-  EXPECT_TRUE(quiet.wait_closed());
-  EXPECT_TRUE(eventually([&] { return drops(running.server, server::DropReason::Idle) == 1; }));
-  EXPECT_TRUE(eventually([&] { return running.server.stats().connected_clients == 0; }));
+  EXPECT_GE(waited, config.idle_timeout) << "dropped before the idle timeout";
+  EXPECT_TRUE(quiet.wait_closed(margin));
+  EXPECT_TRUE(
+      eventually([&] { return drops(running.server, server::DropReason::Idle) == 1; }, margin));
+  EXPECT_TRUE(eventually([&] { return running.server.stats().connected_clients == 0; }, margin));
 }
 
 TEST(ServerSocket, ByeRemovesTheBodyForEveryoneElse) {
@@ -324,8 +350,27 @@ TEST(ServerSocket, LockstepHashesEqualTheSameInputsSteppedInProcess) {
   server::Simulation replay(scene::default_scene());
   replay.join(wa->client_id());
   replay.join(wb->client_id());
+  // Simulation is the server's own tick logic, so a bug in it would be in both. A
+  // plain phys::World, built from the scene with the players' bodies added as the
+  // room adds them (room.h: the player template, dynamic, at rest, at the first
+  // free spawn point; the first two are free here), is a second, independent oracle.
+  const scene::SceneDef& scene = scene::default_scene();
+  phys::World plain = scene::build_world(scene);
+  auto add_player = [&](phys::Vec2 at) {
+    phys::BodyDef def = scene.player;
+    def.motion = phys::Motion::Dynamic;
+    def.position = at;
+    def.velocity = {};
+    def.acceleration = {};
+    return plain.add_body(def);
+  };
+  const phys::BodyId pa = add_player(scene.spawn_points[0]);
+  const phys::BodyId pb = add_player(scene.spawn_points[1]);
+  EXPECT_EQ(wa->body_id(), pa.packed());
+  EXPECT_EQ(wb->body_id(), pb.packed());
   constexpr std::uint64_t kTicks = 40;
   std::vector<std::uint64_t> expected;
+  std::vector<std::uint64_t> expected_plain;
   for (std::uint64_t tick = 1; tick <= kTicks; ++tick) {
     const phys::Vec2 ia{30.0 * std::sin(0.2 * static_cast<double>(tick)), 12.0};
     const phys::Vec2 ib{-20.0, 25.0 * std::cos(0.3 * static_cast<double>(tick))};
@@ -335,6 +380,12 @@ TEST(ServerSocket, LockstepHashesEqualTheSameInputsSteppedInProcess) {
     replay.submit_input(wb->client_id(), tick, ib);
     replay.step_tick();
     expected.push_back(replay.world().state_hash());
+    // The input of tick t is the acceleration during step t (both under the scene's
+    // max_acceleration of 50, so none is clamped); dt = 1 / the scene's tick rate.
+    plain.set_acceleration(pa, ia);
+    plain.set_acceleration(pb, ib);
+    plain.step(1.0 / scene.tick_rate);
+    expected_plain.push_back(plain.state_hash());
   }
   for (std::uint64_t tick = 1; tick <= kTicks; ++tick) {
     const auto sa = next_snapshot(a);
@@ -344,6 +395,7 @@ TEST(ServerSocket, LockstepHashesEqualTheSameInputsSteppedInProcess) {
     EXPECT_EQ(sb->tick(), tick);
     EXPECT_EQ(sa->state_hash(), expected[tick - 1]) << "tick " << tick;
     EXPECT_EQ(sb->state_hash(), expected[tick - 1]) << "tick " << tick;
+    EXPECT_EQ(sa->state_hash(), expected_plain[tick - 1]) << "plain world, tick " << tick;
     EXPECT_EQ(sa->last_applied_input_tick(), tick);
   }
   // Stats are published just after the snapshots are queued.
