@@ -53,7 +53,8 @@ int run_single(const Options& options) {
   // waits for it, in real time it holds until the next one).
   std::uint64_t next_input_tick = welcome.current_tick + 1;
   const client::Vec2 first = pattern.at(next_input_tick);
-  connection.send_input(next_input_tick, first.x, first.y);
+  const bool watching = welcome.spectator;  // a spectator has no body to steer
+  if (!watching) connection.send_input(next_input_tick, first.x, first.y);
   // Without a snapshot for this long the server is presumed gone.
   const auto snapshot_timeout =
       std::max(2000ms, std::chrono::milliseconds(static_cast<long>(4000.0 / welcome.tick_rate)));
@@ -74,7 +75,7 @@ int run_single(const Options& options) {
       fmt::print(stderr, "physics-client: server error {}: {}\n", client::to_string(error->code),
                  error->message);
     }
-    if (snapshot->tick + 1 > next_input_tick) {
+    if (!watching && snapshot->tick + 1 > next_input_tick) {
       next_input_tick = snapshot->tick + 1;
       const client::Vec2 acceleration = pattern.at(next_input_tick);
       if (!connection.send_input(next_input_tick, acceleration.x, acceleration.y)) {
@@ -156,6 +157,8 @@ int main(int argc, char** argv) {
                  "Bytes of body records per snapshot, about (0: none)");
   app.add_flag("--state-hash", options.client.view.state_hash,
                "Ask for the world's state hash in every snapshot");
+  app.add_flag("--spectate", options.client.spectate,
+               "Watch without a body (sends no inputs; the server's --max-spectators applies)");
   CLI11_PARSE(app, argc, argv);
   options.client.view.encoding = encoding == "exact"  ? client::Encoding::Exact
                                  : encoding == "full" ? client::Encoding::Full

@@ -132,8 +132,9 @@ bool Client::connect(std::chrono::milliseconds timeout) {
   io_->socket.set_option(asio::ip::tcp::no_delay(true), ec);
 
   state_ = ConnectionState::AwaitingWelcome;
-  if (!send_frame(wire::encode_frame(convert::make_hello(config_.protocol_version, config_.name,
-                                                         config_.token, config_.view)))) {
+  if (!send_frame(
+          wire::encode_frame(convert::make_hello(config_.protocol_version, config_.name,
+                                                 config_.token, config_.view, config_.spectate)))) {
     return false;
   }
   start_read();
@@ -395,7 +396,9 @@ void Client::on_snapshot(const physics::wire::Snapshot& message, std::size_t wir
       if (!full_state_asked_ && !request_full_state()) return;
     }
   }
-  if (const BodyState* own = snapshot.find(welcome_.body_id)) snapshot.own = *own;
+  if (!welcome_.spectator) {
+    if (const BodyState* own = snapshot.find(welcome_.body_id)) snapshot.own = *own;
+  }
   snapshot.received_at = Clock::now();
   snapshot.wire_bytes = wire_bytes;
   ++stats_.snapshots_received;

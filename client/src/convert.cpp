@@ -25,6 +25,7 @@ static_assert(static_cast<int>(ErrorCode::NoSpawn) == pb::ERROR_NO_SPAWN);
 static_assert(static_cast<int>(ErrorCode::TooSlow) == pb::ERROR_TOO_SLOW);
 static_assert(static_cast<int>(ErrorCode::ProtocolVersion) == pb::ERROR_PROTOCOL_VERSION);
 static_assert(static_cast<int>(ErrorCode::RateLimited) == pb::ERROR_RATE_LIMITED);
+static_assert(static_cast<int>(ErrorCode::SpectatorInput) == pb::ERROR_SPECTATOR_INPUT);
 static_assert(kProtocolVersion == pb::PROTOCOL_VERSION_CURRENT);
 static_assert(static_cast<int>(Encoding::Full) == pb::ENCODING_FULL);
 
@@ -60,6 +61,7 @@ Welcome from_wire(const pb::Welcome& message) {
   welcome.scene_name = message.scene_name();
   welcome.view = from_wire(message.view());
   welcome.max_players = message.max_players();
+  welcome.spectator = message.spectator();
   return welcome;
 }
 
@@ -119,7 +121,7 @@ pb::ViewRequest to_wire(const ViewRequest& request) {
 ServerError from_wire(const pb::Error& message) {
   ServerError error;
   error.raw_code = static_cast<std::uint32_t>(message.code());
-  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::RateLimited)
+  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::SpectatorInput)
                    ? static_cast<ErrorCode>(error.raw_code)
                    : ErrorCode::Unspecified;
   error.message = message.message();
@@ -132,13 +134,14 @@ Pong from_wire(const pb::Pong& message) {
 }
 
 pb::ClientMessage make_hello(std::uint32_t protocol_version, const std::string& name,
-                             const std::string& token, const ViewRequest& view) {
+                             const std::string& token, const ViewRequest& view, bool spectate) {
   pb::ClientMessage message;
   auto* hello = message.mutable_hello();
   hello->set_protocol_version(protocol_version);
   hello->set_client_name(name);
   if (!token.empty()) hello->set_access_token(token);
   *hello->mutable_view() = to_wire(view);
+  hello->set_spectate(spectate);
   return message;
 }
 

@@ -64,6 +64,10 @@ int main(int argc, char** argv) {
                  "Most clients at once; the next one is refused with ERROR_SERVER_FULL")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
+  app.add_option("--max-spectators", config.max_spectators,
+                 "Most spectators (clients that watch without a body) at once")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
   app.add_option("--token", token,
                  "Access token clients must send in Hello (refused with ERROR_BAD_TOKEN)");
   app.add_option("--max-message-bytes", config.max_message_bytes,

@@ -23,6 +23,7 @@ constexpr auto kHousekeepingPeriod = std::chrono::milliseconds(100);
 
 void check_config(const ServerConfig& config) {
   if (config.max_clients < 1) throw std::invalid_argument("max_clients must be at least 1");
+  if (config.max_spectators < 0) throw std::invalid_argument("max_spectators must be >= 0");
   if (config.max_message_bytes < 64) {
     throw std::invalid_argument("max_message_bytes must be at least 64");
   }
@@ -213,7 +214,12 @@ void Server::Impl::do_accept() {
 
 void Server::Impl::on_closed(Session& session, DropReason reason) {
   const std::uint32_t id = session.id();
-  if (session.joined()) {
+  if (session.joined() && spectators_.erase(id) > 0) {
+    feeds_.leave(id);
+    --spectator_count_;
+    spdlog::info("spectator {} '{}' ({}) left: {}", id, session.name(), session.peer(),
+                 to_string(reason));
+  } else if (session.joined()) {
     simulation_.leave(id);
     feeds_.leave(id);
     --joined_count_;
@@ -241,6 +247,7 @@ void Server::Impl::on_bytes(std::size_t sent, std::size_t received) {
 void Server::Impl::publish_connection_counts() {
   update_stats([&](ServerStats& s) {
     s.connected_clients = joined_count_;
+    s.spectators = spectator_count_;
     s.open_connections = sessions_.size();
   });
 }
@@ -258,6 +265,11 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
         session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
                                  "Input before Hello: the first message must be Hello",
                                  DropReason::UnexpectedMessage);
+        return;
+      }
+      if (spectators_.count(session.id()) > 0) {
+        session.send(wire::make_error(physics::wire::ERROR_SPECTATOR_INPUT,
+                                      "a spectator has no body to move; input dropped", false));
         return;
       }
       on_input(session, message.input());
@@ -332,6 +344,10 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
     session.close_with_error(physics::wire::ERROR_INVALID_VIEW, problem, DropReason::InvalidView);
     return;
   }
+  if (hello.spectate()) {
+    join_spectator(session, name, view);
+    return;
+  }
   if (joined_count_ >= static_cast<std::size_t>(config_.max_clients)) {
     session.close_with_error(
         physics::wire::ERROR_SERVER_FULL,
@@ -353,6 +369,37 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
                session.peer(), simulation_.current_tick(), body->packed());
   session.send(make_welcome(simulation_, session.id(), *body, config_.lockstep, wire::to_wire(view),
                             static_cast<std::uint32_t>(config_.max_clients)));
+}
+
+void Server::Impl::join_spectator(Session& session, const std::string& name,
+                                  const wire::ViewSettings& view) {
+  if (view.interest == wire::InterestKind::Radius) {
+    session.close_with_error(physics::wire::ERROR_INVALID_VIEW,
+                             "view.interest_radius needs a body to be around; a spectator may "
+                             "use view.interest_rect",
+                             DropReason::InvalidView);
+    return;
+  }
+  if (spectator_count_ >= static_cast<std::size_t>(config_.max_spectators)) {
+    session.close_with_error(
+        physics::wire::ERROR_SERVER_FULL,
+        "no room to watch: " + std::to_string(config_.max_spectators) + " spectators connected",
+        DropReason::ServerFull);
+    return;
+  }
+  session.set_joined(name);
+  spectators_.insert(session.id());
+  feeds_.join(session.id(), view, std::nullopt);
+  ++spectator_count_;
+  publish_connection_counts();
+  spdlog::info("spectator {} '{}' ({}) joined at tick {}", session.id(), name, session.peer(),
+               simulation_.current_tick());
+  physics::wire::ServerMessage welcome =
+      make_welcome(simulation_, session.id(), phys::BodyId::invalid(), config_.lockstep,
+                   wire::to_wire(view), static_cast<std::uint32_t>(config_.max_clients));
+  welcome.mutable_welcome()->set_body_id(0);
+  welcome.mutable_welcome()->set_spectator(true);
+  session.send(welcome);
 }
 
 void Server::Impl::on_ack(Session& session, const physics::wire::Ack& ack) {

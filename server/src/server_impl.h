@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 
 #include "physics/clock.h"
 #include "physics/fixed_timestep.h"
@@ -19,6 +20,7 @@
 #include "session.h"
 #include "snapshot_feeds.h"
 #include "truth_frame.h"
+#include "wire/view_settings.h"
 
 namespace server {
 
@@ -52,6 +54,7 @@ class Server::Impl final : public SessionHost {
   void on_hello(Session& session, const physics::wire::Hello& hello);
   void on_input(Session& session, const physics::wire::Input& input);
   void on_ack(Session& session, const physics::wire::Ack& ack);
+  void join_spectator(Session& session, const std::string& name, const wire::ViewSettings& view);
   void on_full_state_request(Session& session);
 
   template <typename Update>
@@ -82,7 +85,9 @@ class Server::Impl final : public SessionHost {
   TruthFrame previous_frame_;
 
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
-  std::size_t joined_count_ = 0;
+  std::size_t joined_count_ = 0;  // players
+  std::size_t spectator_count_ = 0;
+  std::set<std::uint32_t> spectators_;  // session ids
   std::uint32_t next_client_id_ = 1;
   bool stopping_ = false;
   bool lockstep_check_posted_ = false;

@@ -42,6 +42,8 @@ struct ClientConfig {
   std::chrono::milliseconds keepalive{2000};
   // How the world is to be sent (Hello.view).
   ViewRequest view;
+  // Watch without a body (Hello.spectate): Welcome::spectator, no own body.
+  bool spectate = false;
 };
 
 // Why the client is not (or no longer) connected.

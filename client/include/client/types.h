@@ -102,6 +102,7 @@ struct Welcome {
   std::string scene_name;
   View view;
   std::uint32_t max_players = 0;
+  bool spectator = false;  // watching: body_id is 0, inputs are refused
 };
 
 // The world after tick `tick`, as this client holds it: every dynamic body in its
@@ -154,6 +155,7 @@ enum class ErrorCode : std::uint32_t {
   InvalidView = 12,
   InvalidAck = 13,
   RateLimited = 14,
+  SpectatorInput = 15,
 };
 
 std::string_view to_string(ErrorCode code);

@@ -30,6 +30,9 @@ struct ServerConfig {
   bool lockstep = false;
   std::chrono::milliseconds lockstep_timeout{250};
   int max_clients = 64;
+  // Spectators (Hello.spectate) watch without a body and are counted apart from the
+  // players: at most this many at once.
+  int max_spectators = 16;
   // When set, a Hello without exactly this access token is refused.
   std::optional<std::string> token;
   // A frame whose length prefix is over this is answered with an Error, then closed.
@@ -78,6 +81,7 @@ const char* to_string(DropReason reason);
 
 struct ServerStats {
   std::size_t connected_clients = 0;  // sessions that completed Hello and hold a body
+  std::size_t spectators = 0;         // sessions that completed Hello to watch
   std::size_t open_connections = 0;   // every open socket, joined or not
   std::uint64_t ticks_stepped = 0;
   std::uint64_t current_tick = 0;  // the last tick stepped
