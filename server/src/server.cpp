@@ -275,6 +275,14 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       on_input(session, message.input());
       return;
     case Kind::kPing: {
+      if (!session.joined()) {
+        // PROTOCOL.md 3.1: the first message must be Hello; a Ping does not keep a
+        // connection that never said it alive.
+        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
+                                 "Ping before Hello: the first message must be Hello",
+                                 DropReason::UnexpectedMessage);
+        return;
+      }
       physics::wire::ServerMessage reply;
       physics::wire::Pong& pong = *reply.mutable_pong();
       pong.set_nonce(message.ping().nonce());

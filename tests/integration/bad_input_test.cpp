@@ -311,6 +311,25 @@ TEST_F(BadInput, InputBeforeHelloIsAnUnexpectedMessage) {
   EXPECT_TRUE(peer.wait_closed(3s));
 }
 
+// PROTOCOL.md 3.1: anything but Hello first is ERROR_UNEXPECTED_MESSAGE, fatal; a
+// Ping is no exception (it would keep a connection that never joined alive).
+TEST_F(BadInput, PingAckOrFullStateRequestBeforeHelloAreUnexpected) {
+  start();
+  std::vector<pb::ClientMessage> firsts(3);
+  firsts[0].mutable_ping()->set_nonce(1);
+  firsts[1].mutable_ack()->set_tick(1);
+  firsts[2].mutable_full_state_request();
+  for (const pb::ClientMessage& first : firsts) {
+    RawPeer peer(server_->port());
+    ASSERT_TRUE(peer.send(first));
+    auto error = peer.receive_error(3s);
+    ASSERT_TRUE(error.has_value()) << first.ShortDebugString();
+    EXPECT_EQ(error->code(), pb::ERROR_UNEXPECTED_MESSAGE) << first.ShortDebugString();
+    EXPECT_TRUE(error->fatal());
+    EXPECT_TRUE(peer.wait_closed(3s));
+  }
+}
+
 TEST_F(BadInput, SecondHelloIsAnUnexpectedMessage) {
   start();
   RawPeer peer(server_->port());
