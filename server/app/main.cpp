@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   double tick_rate = 0.0;
   int lockstep_timeout_ms = 250;
   long idle_timeout_ms = 10000;
+  long handshake_timeout_ms = 2000;
   std::string token;
   std::string log_level = "info";
 
@@ -80,6 +81,19 @@ int main(int argc, char** argv) {
                  "whose window is full skips ticks instead of queueing them")
       ->capture_default_str()
       ->check(CLI::Range(1u, 256u));
+  app.add_option("--handshake-timeout-ms", handshake_timeout_ms,
+                 "Close a connection that has not completed its Hello within this long")
+      ->capture_default_str()
+      ->check(CLI::Range(1L, 3600000L));
+  app.add_option("--max-pending", config.max_pending,
+                 "Most connections that have not joined yet, at once (never counted against "
+                 "--max-clients)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--max-pending-per-address", config.max_pending_per_address,
+                 "Most connections that have not joined yet from one address")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
   app.add_option("--idle-timeout-ms", idle_timeout_ms,
                  "Drop a client that sends nothing, or reads nothing, for this long "
                  "(clients without inputs send Ping)")
@@ -106,6 +120,7 @@ int main(int argc, char** argv) {
   config.tick_rate = tick_rate;
   config.lockstep_timeout = std::chrono::milliseconds(lockstep_timeout_ms);
   config.idle_timeout = std::chrono::milliseconds(idle_timeout_ms);
+  config.handshake_timeout = std::chrono::milliseconds(handshake_timeout_ms);
   if (!token.empty()) config.token = token;
   config.handle_signals = true;
 

@@ -15,9 +15,6 @@
 namespace server {
 namespace {
 
-// Connections that have not said Hello yet may exceed max_clients by this many, so
-// that a burst of handshakes is not refused, while a flood of idle sockets is.
-constexpr std::size_t kHandshakeSlack = 64;
 constexpr std::size_t kMaxClientNameBytes = 64;
 constexpr auto kHousekeepingPeriod = std::chrono::milliseconds(100);
 
@@ -32,6 +29,13 @@ void check_config(const ServerConfig& config) {
                                 std::to_string(wire::kMaxWindow) + "]");
   }
   if (config.heartbeat.count() <= 0) throw std::invalid_argument("heartbeat must be > 0");
+  if (config.handshake_timeout.count() <= 0) {
+    throw std::invalid_argument("handshake_timeout must be > 0");
+  }
+  if (config.max_pending < 1 || config.max_pending_per_address < 1) {
+    throw std::invalid_argument("max_pending and max_pending_per_address must be at least 1");
+  }
+  if (config.max_hello_bytes < 64) throw std::invalid_argument("max_hello_bytes must be >= 64");
   if (config.idle_timeout.count() <= 0) throw std::invalid_argument("idle_timeout must be > 0");
   if (config.lockstep_timeout.count() <= 0) {
     throw std::invalid_argument("lockstep_timeout must be > 0");
@@ -104,6 +108,10 @@ const char* to_string(DropReason reason) {
       return "server shutting down";
     case DropReason::InvalidView:
       return "invalid view settings";
+    case DropReason::HandshakeTimeout:
+      return "no Hello in time";
+    case DropReason::TooManyPending:
+      return "too many connections not joined";
   }
   return "unknown";
 }
@@ -127,6 +135,8 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
                              simulation_.world().settings().gravity.y),
              heartbeat_ticks(config_.heartbeat, simulation_.tick_rate()), config_.lockstep) {
   limits_.max_message_bytes = config_.max_message_bytes;
+  limits_.max_hello_bytes = config_.max_hello_bytes;
+  limits_.handshake_timeout = config_.handshake_timeout;
   limits_.max_queued_snapshots = config_.max_snapshot_window + 1;
   limits_.idle_timeout = config_.idle_timeout;
   limits_.close_linger = config_.close_linger;
@@ -202,14 +212,33 @@ void Server::Impl::do_accept() {
     publish_connection_counts();
     spdlog::info("connection {} from {}", id, session->peer());
     session->start();
-    const std::size_t limit = static_cast<std::size_t>(config_.max_clients) + kHandshakeSlack;
-    if (sessions_.size() > limit) {
-      session->close_with_error(physics::wire::ERROR_SERVER_FULL,
-                                "too many open connections (" + std::to_string(limit) + ")",
-                                DropReason::ServerFull);
-    }
+    refuse_if_too_many_pending(*session);
     do_accept();
   });
+}
+
+// Connections that have not joined have caps of their own, in all and per address,
+// so that a stranger's silent sockets never take a player's seat (and each is closed
+// at the handshake deadline anyway).
+void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
+  std::size_t pending = 0;
+  std::size_t from_address = 0;
+  for (const auto& [id, session] : sessions_) {
+    if (session->joined() || session->closing()) continue;
+    ++pending;
+    if (session->address() == fresh.address()) ++from_address;
+  }
+  if (pending > static_cast<std::size_t>(config_.max_pending)) {
+    fresh.close_with_error(
+        physics::wire::ERROR_SERVER_FULL,
+        "too many connections still handshaking (" + std::to_string(config_.max_pending) + ")",
+        DropReason::TooManyPending);
+  } else if (from_address > static_cast<std::size_t>(config_.max_pending_per_address)) {
+    fresh.close_with_error(physics::wire::ERROR_SERVER_FULL,
+                           "too many connections still handshaking from " + fresh.address() + " (" +
+                               std::to_string(config_.max_pending_per_address) + ")",
+                           DropReason::TooManyPending);
+  }
 }
 
 void Server::Impl::on_closed(Session& session, DropReason reason) {

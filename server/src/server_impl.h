@@ -41,6 +41,7 @@ class Server::Impl final : public SessionHost {
 
  private:
   void do_accept();
+  void refuse_if_too_many_pending(Session& fresh);
   void start_fixed_ticks();
   void arm_tick_timer();
   void on_tick_timer();

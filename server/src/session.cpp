@@ -1,5 +1,6 @@
 #include "session.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "wire/messages.h"
@@ -12,8 +13,9 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& ho
       id_(id),
       host_(host),
       limits_(limits),
-      reader_(limits.max_message_bytes),
-      last_received_(clock::now()) {
+      reader_(std::min(limits.max_hello_bytes, limits.max_message_bytes)),
+      accepted_(clock::now()),
+      last_received_(accepted_) {
   std::error_code ec;
   // A snapshot must not wait for Nagle's algorithm to gather more bytes.
   socket_.set_option(asio::ip::tcp::no_delay(true), ec);
@@ -21,8 +23,8 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& ho
     socket_.set_option(asio::socket_base::send_buffer_size(limits_.socket_send_buffer_bytes), ec);
   }
   const auto endpoint = socket_.remote_endpoint(ec);
-  peer_ = ec ? std::string("unknown")
-             : endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
+  address_ = ec ? std::string("unknown") : endpoint.address().to_string();
+  peer_ = ec ? address_ : address_ + ":" + std::to_string(endpoint.port());
 }
 
 void Session::start() { do_read(); }
@@ -192,6 +194,13 @@ void Session::check_deadlines(clock::time_point now) {
   if (closed_) return;
   if (closing_) {
     if (now >= close_deadline_) finish(close_reason_);
+    return;
+  }
+  if (!joined_ && now - accepted_ >= limits_.handshake_timeout) {
+    close_with_error(physics::wire::ERROR_TOO_SLOW,
+                     "no Hello within " + std::to_string(limits_.handshake_timeout.count()) +
+                         " ms of connecting",
+                     DropReason::HandshakeTimeout);
     return;
   }
   if (in_flight_ && now - write_started_ >= limits_.idle_timeout) {

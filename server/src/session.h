@@ -37,6 +37,8 @@ class SessionHost {
 
 struct SessionLimits {
   std::size_t max_message_bytes = 1u << 20;
+  std::size_t max_hello_bytes = 4096;  // the frame limit until the session has joined
+  std::chrono::milliseconds handshake_timeout{2000};
   // More queued snapshots than this means the feeds' window bound was broken.
   std::size_t max_queued_snapshots = 257;
   std::size_t max_queued_control = 256;
@@ -73,7 +75,10 @@ class Session : public std::enable_shared_from_this<Session> {
   void set_joined(std::string name) {
     joined_ = true;
     name_ = std::move(name);
+    reader_.set_max_message_bytes(limits_.max_message_bytes);
   }
+  // The peer's address without the port, for the per-address limits.
+  const std::string& address() const { return address_; }
   const std::string& name() const { return name_; }
   bool closing() const { return closing_; }
   bool closed() const { return closed_; }
@@ -107,6 +112,7 @@ class Session : public std::enable_shared_from_this<Session> {
   SessionHost& host_;
   SessionLimits limits_;
   std::string peer_;
+  std::string address_;
   std::string name_;
   wire::FrameReader reader_;
   std::array<std::uint8_t, 64 * 1024> read_buffer_{};
@@ -121,6 +127,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool closing_ = false;
   bool closed_ = false;
   DropReason close_reason_ = DropReason::Disconnected;
+  clock::time_point accepted_;
   clock::time_point last_received_;
   clock::time_point write_started_;
   clock::time_point close_deadline_;

@@ -92,7 +92,8 @@ std::optional<pb::ErrorCode> documented_reply(const std::string& bytes) {
     if ((byte & 0x80) == 0) break;
   }
   ++at;
-  if (length > wire::kDefaultMaxMessageBytes) return pb::ERROR_MESSAGE_TOO_LARGE;
+  // Before Hello the frame limit is max_hello_bytes (4 KiB), not max_message_bytes.
+  if (length > server::ServerConfig{}.max_hello_bytes) return pb::ERROR_MESSAGE_TOO_LARGE;
   if (bytes.size() - at < length) return std::nullopt;  // cut off inside the frame
   pb::ClientMessage message;
   if (!wire::parse_client_message(bytes.substr(at, length), message)) return pb::ERROR_MALFORMED;

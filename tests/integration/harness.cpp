@@ -57,6 +57,15 @@ RawPeer::RawPeer(std::uint16_t port) {
   if (connected_) socket_.set_option(asio::ip::tcp::no_delay(true), ec);
 }
 
+RawPeer::RawPeer(std::uint16_t port, const std::string& local_address) {
+  std::error_code ec;
+  socket_.open(asio::ip::tcp::v4(), ec);
+  if (!ec) socket_.bind({asio::ip::make_address(local_address), 0}, ec);
+  if (!ec) socket_.connect({asio::ip::make_address("127.0.0.1"), port}, ec);
+  connected_ = !ec;
+  if (connected_) socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+}
+
 RawPeer::~RawPeer() { close(); }
 
 void RawPeer::close() {

@@ -59,6 +59,9 @@ std::uint64_t dropped(const server::ServerStats& stats, server::DropReason reaso
 class RawPeer {
  public:
   explicit RawPeer(std::uint16_t port);
+  // Connects from `local_address` (another loopback address, such as 127.0.0.2, to
+  // test the per-address limits).
+  RawPeer(std::uint16_t port, const std::string& local_address);
   ~RawPeer();
   bool connected() const { return connected_; }
   // True when every byte was written (false once the server has closed).

@@ -37,6 +37,17 @@ struct ServerConfig {
   std::optional<std::string> token;
   // A frame whose length prefix is over this is answered with an Error, then closed.
   std::size_t max_message_bytes = 1u << 20;
+  // Before its Hello a connection may send frames of at most this many bytes (a
+  // Hello is well under 1 KiB), so a stranger cannot make the server hold
+  // max_message_bytes for each connection that never joins.
+  std::size_t max_hello_bytes = 4096;
+  // A connection must complete its Hello within this long (separately from the
+  // idle timeout of joined clients); then it gets ERROR_TOO_SLOW and is closed.
+  std::chrono::milliseconds handshake_timeout{2000};
+  // Connections that have not joined yet: at most this many at once, and at most
+  // max_pending_per_address from one address. They never count against max_clients.
+  int max_pending = 64;
+  int max_pending_per_address = 8;
   // The largest window (snapshots sent and not yet acknowledged) a client may ask
   // for in Hello.view; the default window is min(12, this). A client whose window
   // is full skips ticks, so no client ever holds more than this many snapshots in
@@ -76,6 +87,8 @@ enum class DropReason : std::uint8_t {
   TooSlow,            // a write made no progress for idle_timeout
   ShuttingDown,       // the server stopped
   InvalidView,        // Hello.view with a field out of range
+  HandshakeTimeout,   // no Hello within handshake_timeout
+  TooManyPending,     // too many connections that have not joined (in all, or from one address)
 };
 const char* to_string(DropReason reason);
 

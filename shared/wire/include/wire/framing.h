@@ -42,6 +42,9 @@ class FrameReader {
   FrameStatus next(std::string& frame);
   std::size_t buffered_bytes() const;
   std::size_t max_message_bytes() const { return max_; }
+  // Changes the limit for the frames not yet taken (the server raises it once a
+  // connection has joined).
+  void set_max_message_bytes(std::size_t max) { max_ = max; }
   // The length the last TooLarge prefix announced.
   std::uint64_t rejected_length() const { return rejected_length_; }
 
