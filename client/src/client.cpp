@@ -380,6 +380,7 @@ void Client::on_snapshot(const physics::wire::Snapshot& message, std::size_t wir
       return;
     }
     snapshot.records = static_cast<std::size_t>(message.quantized().id_gaps_size() +
+                                                message.velocities().id_gaps_size() +
                                                 message.exact().id_gaps_size());
     const auto& bodies = held.reconstruction.bodies();
     snapshot.bodies.reserve(bodies.size());

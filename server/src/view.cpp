@@ -16,6 +16,10 @@ using wire::PredictorMode;
 // this the body goes as an exact record instead.
 constexpr double kMaxQuantizedDelta = 4503599627370496.0;  // 2^52
 
+// A record carries the velocity alone when the position is within this share of the
+// tolerance: the position then keeps room to drift before it must be sent.
+constexpr double kVelocityOnlyShare = 0.5;
+
 // Under a byte budget, bodies are ranked by how far they are out of tolerance and
 // how near the client's own body they are: at this distance the weight halves.
 constexpr double kPriorityHalfDistance = 10.0;
@@ -269,6 +273,9 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
   ExactWriter exact_writer(exact_list);
   std::uint64_t last_quantized = 0;
   std::uint32_t last_quantized_mode = 0;  // record index of the last mode entry
+  physics::wire::VelocityBodies& velocities = *message_.mutable_velocities();
+  std::uint64_t last_velocity = 0;
+  std::uint32_t last_velocity_mode = 0;
   const PredictedBody zero{};
   for (const Candidate& c : candidates) {
     const TruthBody& t = *c.truth;
@@ -282,8 +289,25 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
                          (t.vy - base.vy) / qv};
     const bool fits = std::all_of(std::begin(d), std::end(d),
                                   [](double v) { return std::fabs(v) < kMaxQuantizedDelta; });
+    // A body still well inside its position tolerance needs only its velocity
+    // corrected: most records of a flowing pile are of that kind.
+    const bool position_holds = c.held != nullptr &&
+                                std::fabs(t.x - base.x) <= kVelocityOnlyShare * pos_tol &&
+                                std::fabs(t.y - base.y) <= kVelocityOnlyShare * pos_tol;
     if (exact || !fits) {
       exact_writer.add(t.id, t.x, t.y, t.vx, t.vy, mode_changes, mode);
+    } else if (position_holds) {
+      const auto index = static_cast<std::uint32_t>(velocities.id_gaps_size());
+      velocities.add_id_gaps(t.id - last_velocity);
+      last_velocity = t.id;
+      velocities.add_dvx(static_cast<std::int64_t>(std::nearbyint(d[2])));
+      velocities.add_dvy(static_cast<std::int64_t>(std::nearbyint(d[3])));
+      if (mode_changes) {
+        velocities.add_modes(((index - last_velocity_mode) << 2) |
+                             static_cast<std::uint32_t>(mode));
+        last_velocity_mode = index;
+      }
+      stats_.max_position_error = std::max(stats_.max_position_error, position_error(t, base));
     } else {
       const auto index = static_cast<std::uint32_t>(quantized.id_gaps_size());
       quantized.add_id_gaps(t.id - last_quantized);
@@ -306,6 +330,7 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
   }
   if (quantized.id_gaps_size() == 0) message_.clear_quantized();
   if (exact_list.id_gaps_size() == 0) message_.clear_exact();
+  if (velocities.id_gaps_size() == 0) message_.clear_velocities();
   for (std::size_t i = 0; i < left.size(); ++i) {
     message_.add_left_gaps(i == 0 ? left[i] : left[i] - left[i - 1]);
   }

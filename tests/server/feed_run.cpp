@@ -69,6 +69,8 @@ void FeedRun::tick() {
       for (const auto id : ids) ++c.records_of[id];
       ASSERT_TRUE(wire::decode_id_gaps(snapshot.exact().id_gaps(), ids));
       for (const auto id : ids) ++c.records_of[id];
+      ASSERT_TRUE(wire::decode_id_gaps(snapshot.velocities().id_gaps(), ids));
+      for (const auto id : ids) ++c.records_of[id];
     }
     ++c.snapshots;
     c.records += out.records;

@@ -179,3 +179,33 @@ TEST(Reconstruction, MalformedSnapshotsAreRefusedAndChangeNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Reconstruction, AVelocityRecordKeepsThePositionHeld) {
+  const wire::Predictor predictor(60.0, 0.0, 0.0);
+  wire::Reconstruction held;
+  ASSERT_EQ(held.apply(exact_snapshot(1, 5, 1.0, 2.0, 3.0, 4.0), predictor, {}), "");
+  physics::wire::Snapshot s;
+  s.set_tick(1);
+  auto* v = s.mutable_velocities();
+  v->add_id_gaps(5);
+  v->add_dvx(-3000);
+  v->add_dvy(500);
+  v->add_modes(1);  // record 0: Glide
+  ASSERT_EQ(held.apply(s, predictor, {0.001, 0.001}), "");
+  const wire::PredictedBody& b = held.bodies().at(0);
+  EXPECT_EQ(b.x, 1.0);
+  EXPECT_EQ(b.y, 2.0);
+  EXPECT_EQ(b.vx, 3.0 + -3000.0 * 0.001);
+  EXPECT_EQ(b.vy, 4.0 + 500.0 * 0.001);
+  EXPECT_EQ(b.mode, wire::PredictorMode::Glide);
+  physics::wire::Snapshot bad;
+  bad.set_tick(2);
+  bad.mutable_velocities()->add_id_gaps(5);
+  bad.mutable_velocities()->add_dvx(1);  // no dvy
+  EXPECT_NE(held.apply(bad, predictor, {}), "");
+  EXPECT_EQ(held.tick(), 1u);
+}
+
+}  // namespace

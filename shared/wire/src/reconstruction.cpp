@@ -8,9 +8,11 @@
 namespace wire {
 namespace {
 
+enum class RecordKind : std::uint8_t { Quantized, Velocity, Exact };
+
 struct Record {
   std::uint64_t id = 0;
-  bool exact = false;
+  RecordKind kind = RecordKind::Quantized;
   double x = 0.0;  // exact: the value; quantized: the integer, as a double
   double y = 0.0;
   double vx = 0.0;
@@ -61,6 +63,24 @@ std::string read_quantized(const physics::wire::QuantizedBodies& list,
   return read_modes(list, first, records);
 }
 
+std::string read_velocities(const physics::wire::VelocityBodies& list,
+                            std::vector<Record>& records) {
+  const int n = list.id_gaps_size();
+  if (list.dvx_size() != n || list.dvy_size() != n) return "velocity lists of different lengths";
+  std::vector<std::uint64_t> ids;
+  if (!decode_id_gaps(list.id_gaps(), ids)) return "velocity record ids do not ascend";
+  const std::size_t first = records.size();
+  for (int i = 0; i < n; ++i) {
+    Record r;
+    r.id = ids[static_cast<std::size_t>(i)];
+    r.kind = RecordKind::Velocity;
+    r.vx = static_cast<double>(list.dvx(i));
+    r.vy = static_cast<double>(list.dvy(i));
+    records.push_back(r);
+  }
+  return read_modes(list, first, records);
+}
+
 std::string read_exact(const physics::wire::ExactBodies& list, std::vector<Record>& records) {
   const int n = list.id_gaps_size();
   if (list.x_size() != n || list.y_size() != n || list.vx_size() != n || list.vy_size() != n) {
@@ -72,7 +92,7 @@ std::string read_exact(const physics::wire::ExactBodies& list, std::vector<Recor
   for (int i = 0; i < n; ++i) {
     Record r;
     r.id = ids[static_cast<std::size_t>(i)];
-    r.exact = true;
+    r.kind = RecordKind::Exact;
     r.x = list.x(i);
     r.y = list.y(i);
     r.vx = list.vx(i);
@@ -87,21 +107,29 @@ std::string read_exact(const physics::wire::ExactBodies& list, std::vector<Recor
 }
 
 // The record applied to what the client held (or to the zero state for a body it
-// did not hold): quantized  x = x_predicted + n * quantum;  exact  x = the value.
+// did not hold): quantized  x = x_predicted + n * quantum;  velocity  the same for
+// vx and vy alone;  exact  x = the value.
 PredictedBody applied(const Record& r, const PredictedBody* held, Quantum q) {
   PredictedBody body;
   body.id = r.id;
   if (held != nullptr) body = *held;
-  if (r.exact) {
-    body.x = r.x;
-    body.y = r.y;
-    body.vx = r.vx;
-    body.vy = r.vy;
-  } else {
-    body.x = body.x + r.x * q.position;
-    body.y = body.y + r.y * q.position;
-    body.vx = body.vx + r.vx * q.velocity;
-    body.vy = body.vy + r.vy * q.velocity;
+  switch (r.kind) {
+    case RecordKind::Exact:
+      body.x = r.x;
+      body.y = r.y;
+      body.vx = r.vx;
+      body.vy = r.vy;
+      break;
+    case RecordKind::Quantized:
+      body.x = body.x + r.x * q.position;
+      body.y = body.y + r.y * q.position;
+      body.vx = body.vx + r.vx * q.velocity;
+      body.vy = body.vy + r.vy * q.velocity;
+      break;
+    case RecordKind::Velocity:
+      body.vx = body.vx + r.vx * q.velocity;
+      body.vy = body.vy + r.vy * q.velocity;
+      break;
   }
   if (r.has_mode) body.mode = r.mode;
   return body;
@@ -146,17 +174,20 @@ std::string Reconstruction::apply(const physics::wire::Snapshot& snapshot,
       return error;
     }
   }
-  const std::size_t quantized_count = records.size();
+  if (snapshot.has_velocities()) {
+    if (std::string error = read_velocities(snapshot.velocities(), records); !error.empty()) {
+      return error;
+    }
+  }
   if (snapshot.has_exact()) {
     if (std::string error = read_exact(snapshot.exact(), records); !error.empty()) return error;
   }
   std::vector<std::uint64_t> gone;
   if (!decode_id_gaps(snapshot.left_gaps(), gone)) return "left body ids do not ascend";
-  // Quantized then exact records, each list ascending: one sorted list (stable, so a
-  // body in both lists gets the exact record last).
-  std::inplace_merge(records.begin(),
-                     records.begin() + static_cast<std::ptrdiff_t>(quantized_count), records.end(),
-                     [](const Record& a, const Record& b) { return a.id < b.id; });
+  // Quantized, velocity, then exact records, each list ascending: one list sorted by
+  // id (stable, so a body in several lists gets its records in that order).
+  std::stable_sort(records.begin(), records.end(),
+                   [](const Record& a, const Record& b) { return a.id < b.id; });
 
   if (snapshot.full()) clear();
   if (!started_) {
