@@ -285,17 +285,22 @@ void Server::Impl::publish_connection_counts() {
 
 void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& message) {
   using Kind = physics::wire::ClientMessage::KindCase;
-  switch (message.kind_case()) {
+  // PROTOCOL.md 3.1: the first message must be Hello. Anything else before it (a
+  // Ping included: it must not keep a connection that never joined alive) is fatal;
+  // Bye closes quietly, and an empty envelope is malformed (below).
+  const Kind kind = message.kind_case();
+  if (!session.joined() && kind != Kind::kHello && kind != Kind::kBye &&
+      kind != Kind::KIND_NOT_SET) {
+    session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
+                             "a message before Hello: the first message must be Hello",
+                             DropReason::UnexpectedMessage);
+    return;
+  }
+  switch (kind) {
     case Kind::kHello:
       on_hello(session, message.hello());
       return;
     case Kind::kInput:
-      if (!session.joined()) {
-        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
-                                 "Input before Hello: the first message must be Hello",
-                                 DropReason::UnexpectedMessage);
-        return;
-      }
       if (spectators_.count(session.id()) > 0) {
         session.send(wire::make_error(physics::wire::ERROR_SPECTATOR_INPUT,
                                       "a spectator has no body to move; input dropped", false));
@@ -304,14 +309,6 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       on_input(session, message.input());
       return;
     case Kind::kPing: {
-      if (!session.joined()) {
-        // PROTOCOL.md 3.1: the first message must be Hello; a Ping does not keep a
-        // connection that never said it alive.
-        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
-                                 "Ping before Hello: the first message must be Hello",
-                                 DropReason::UnexpectedMessage);
-        return;
-      }
       physics::wire::ServerMessage reply;
       physics::wire::Pong& pong = *reply.mutable_pong();
       pong.set_nonce(message.ping().nonce());
@@ -321,21 +318,9 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       return;
     }
     case Kind::kAck:
-      if (!session.joined()) {
-        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
-                                 "Ack before Hello: the first message must be Hello",
-                                 DropReason::UnexpectedMessage);
-        return;
-      }
       on_ack(session, message.ack());
       return;
     case Kind::kFullStateRequest:
-      if (!session.joined()) {
-        session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
-                                 "FullStateRequest before Hello: the first message must be Hello",
-                                 DropReason::UnexpectedMessage);
-        return;
-      }
       on_full_state_request(session);
       return;
     case Kind::kBye:
@@ -574,8 +559,7 @@ TickResult Server::Impl::run_one_tick() {
   const BodyChanges changes = simulation_.take_changes();
   for (const phys::BodyId id : changes.added) feeds_.note_added(id.packed());
   for (const std::uint64_t id : changes.removed) feeds_.note_removed(id);
-  TruthFrame frame =
-      read_truth(simulation_.world(), result.tick, &previous_frame_, simulation_.dt());
+  TruthFrame frame = read_truth(simulation_.world(), result.tick, &previous_frame_);
   broadcast(frame);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

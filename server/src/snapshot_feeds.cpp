@@ -171,8 +171,6 @@ std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::
     ++stats_.views_updated;
     stats_.max_position_error =
         std::max(stats_.max_position_error, view.last_stats().max_position_error);
-    const auto delta = std::make_shared<const std::string>(view.delta());
-    std::shared_ptr<const std::string> full_bytes;
     for (const FeedClient c : ready) {
       Feed& feed = feeds_.at(c);
       const bool full = full_due(feed);
@@ -185,11 +183,10 @@ std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::
       out.tick = frame.tick;
       out.full = full;
       if (full && !reset) {
-        if (!full_bytes) full_bytes = std::make_shared<const std::string>(view.full_state());
-        out.shared = full_bytes;
+        out.shared = view.full_state();
         out.records = view.mirror().bodies().size();
       } else {
-        out.shared = delta;
+        out.shared = view.delta();
         out.records = view.last_stats().records;
       }
       out.tail = std::move(tail);

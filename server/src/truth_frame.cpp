@@ -1,7 +1,6 @@
 #include "truth_frame.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace server {
 
@@ -11,14 +10,11 @@ const TruthBody* TruthFrame::find(std::uint64_t id) const {
   return it != bodies.end() && it->id == id ? &*it : nullptr;
 }
 
-TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthFrame* previous,
-                      double dt) {
+TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthFrame* previous) {
   TruthFrame frame;
   frame.tick = tick;
   frame.state_hash = world.state_hash();
   frame.bodies.reserve(world.dynamic_body_count());
-  const phys::Vec2 g = world.settings().gravity;
-  const bool gravity = g.x != 0.0 || g.y != 0.0;
   std::size_t p = 0;
   world.for_each_body([&](const phys::BodyState& body) {
     if (body.motion != phys::Motion::Dynamic) return;
@@ -41,13 +37,6 @@ TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthF
         t.previous_y = before[p].y;
         t.previous_vx = before[p].vx;
         t.previous_vy = before[p].vy;
-      }
-      if (gravity && p < before.size() && before[p].id == t.id) {
-        // The change of velocity over the tick, against what gravity alone gives.
-        const double ax = (t.vx - before[p].vx) / dt;
-        const double ay = (t.vy - before[p].vy) / dt;
-        const double from_gravity = std::hypot(ax - g.x, ay - g.y);
-        t.supported = from_gravity > std::hypot(ax, ay);
       }
     }
     frame.bodies.push_back(t);

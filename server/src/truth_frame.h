@@ -1,9 +1,8 @@
 #pragma once
 // The world after a tick as the snapshot side reads it: every dynamic body's exact
 // state, in ascending id, read from the world once per tick and shared by every
-// view. `supported` tells the views which predictor fits a body: a body whose
-// velocity changed over the last tick by about nothing, not by gravity, is held up
-// by something (it slides or rests) rather than flying.
+// view. A body's state a tick before lets a view see which predictor would have
+// carried it over the last tick.
 #include <cstdint>
 #include <vector>
 
@@ -19,7 +18,6 @@ struct TruthBody {
   double vx = 0.0;
   double vy = 0.0;
   bool awake = true;
-  bool supported = false;
   // The state one tick before (equal to this one for a body new this tick).
   double previous_x = 0.0;
   double previous_y = 0.0;
@@ -36,8 +34,7 @@ struct TruthFrame {
 };
 
 // Reads the world after `tick`. `previous` is the frame of the tick before (or
-// null), from which each body's change of velocity is taken.
-TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthFrame* previous,
-                      double dt);
+// null), from which each body's state a tick before is taken.
+TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthFrame* previous);
 
 }  // namespace server

@@ -87,31 +87,38 @@ PredictorMode choose_mode(const wire::Predictor& predictor, const TruthBody& t,
   return best_miss < 0.5 * kept ? best : current;
 }
 
-// Appends exact records: ids as gaps from the one before, and a mode entry
-// ((index gap << 2) | mode) for each record whose mode changes.
-class ExactWriter {
+// Starts the records of one list: ids as gaps from the one before, and a mode entry
+// ((index gap << 2) | mode) for each record whose mode changes. The caller adds the
+// record's values to the list it returns.
+template <class List>
+class RecordStarts {
  public:
-  explicit ExactWriter(physics::wire::ExactBodies& list) : list_(list) {}
-  void add(std::uint64_t id, double x, double y, double vx, double vy, bool mode_changes,
-           PredictorMode mode) {
+  explicit RecordStarts(List& list) : list_(list) {}
+  List& start(std::uint64_t id, bool mode_changes, PredictorMode mode) {
     const auto index = static_cast<std::uint32_t>(list_.id_gaps_size());
     list_.add_id_gaps(id - last_id_);
     last_id_ = id;
-    list_.add_x(x);
-    list_.add_y(y);
-    list_.add_vx(vx);
-    list_.add_vy(vy);
     if (mode_changes) {
       list_.add_modes(((index - last_mode_) << 2) | static_cast<std::uint32_t>(mode));
       last_mode_ = index;
     }
+    return list_;
   }
 
  private:
-  physics::wire::ExactBodies& list_;
+  List& list_;
   std::uint64_t last_id_ = 0;
   std::uint32_t last_mode_ = 0;  // record index of the last mode entry
 };
+
+void add_exact(RecordStarts<physics::wire::ExactBodies>& exact, std::uint64_t id, double x,
+               double y, double vx, double vy, bool mode_changes, PredictorMode mode) {
+  physics::wire::ExactBodies& list = exact.start(id, mode_changes, mode);
+  list.add_x(x);
+  list.add_y(y);
+  list.add_vx(vx);
+  list.add_vy(vy);
+}
 
 std::size_t varint_bytes(std::uint64_t v) {
   std::size_t n = 1;
@@ -170,15 +177,14 @@ void View::update_full_encoding(const TruthFrame& frame, std::optional<std::uint
 void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, bool reset) {
   stats_ = {};
   message_.Clear();
-  full_state_ready_ = false;
+  full_state_.reset();
   last_tick_ = frame.tick;
   state_hash_ = frame.state_hash;
-  updated_ = true;
   message_.set_tick(frame.tick);
   if (settings_.state_hash) message_.set_state_hash(frame.state_hash);
   if (settings_.encoding == physics::wire::ENCODING_FULL) {
     update_full_encoding(frame, own);
-    delta_ = message_.SerializeAsString();
+    delta_ = std::make_shared<const std::string>(message_.SerializeAsString());
     return;
   }
   const bool exact = settings_.encoding == physics::wire::ENCODING_EXACT;
@@ -270,12 +276,10 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
   // The records, ascending id; ids as gaps from the one before.
   physics::wire::QuantizedBodies& quantized = *message_.mutable_quantized();
   physics::wire::ExactBodies& exact_list = *message_.mutable_exact();
-  ExactWriter exact_writer(exact_list);
-  std::uint64_t last_quantized = 0;
-  std::uint32_t last_quantized_mode = 0;  // record index of the last mode entry
   physics::wire::VelocityBodies& velocities = *message_.mutable_velocities();
-  std::uint64_t last_velocity = 0;
-  std::uint32_t last_velocity_mode = 0;
+  RecordStarts<physics::wire::ExactBodies> exact_records(exact_list);
+  RecordStarts<physics::wire::QuantizedBodies> quantized_records(quantized);
+  RecordStarts<physics::wire::VelocityBodies> velocity_records(velocities);
   const PredictedBody zero{};
   for (const Candidate& c : candidates) {
     const TruthBody& t = *c.truth;
@@ -295,34 +299,20 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
                                 std::fabs(t.x - base.x) <= kVelocityOnlyShare * pos_tol &&
                                 std::fabs(t.y - base.y) <= kVelocityOnlyShare * pos_tol;
     if (exact || !fits) {
-      exact_writer.add(t.id, t.x, t.y, t.vx, t.vy, mode_changes, mode);
+      add_exact(exact_records, t.id, t.x, t.y, t.vx, t.vy, mode_changes, mode);
     } else if (position_holds) {
-      const auto index = static_cast<std::uint32_t>(velocities.id_gaps_size());
-      velocities.add_id_gaps(t.id - last_velocity);
-      last_velocity = t.id;
-      velocities.add_dvx(static_cast<std::int64_t>(std::nearbyint(d[2])));
-      velocities.add_dvy(static_cast<std::int64_t>(std::nearbyint(d[3])));
-      if (mode_changes) {
-        velocities.add_modes(((index - last_velocity_mode) << 2) |
-                             static_cast<std::uint32_t>(mode));
-        last_velocity_mode = index;
-      }
+      physics::wire::VelocityBodies& list = velocity_records.start(t.id, mode_changes, mode);
+      list.add_dvx(static_cast<std::int64_t>(std::nearbyint(d[2])));
+      list.add_dvy(static_cast<std::int64_t>(std::nearbyint(d[3])));
       stats_.max_position_error = std::max(stats_.max_position_error, position_error(t, base));
     } else {
-      const auto index = static_cast<std::uint32_t>(quantized.id_gaps_size());
-      quantized.add_id_gaps(t.id - last_quantized);
-      last_quantized = t.id;
+      physics::wire::QuantizedBodies& list = quantized_records.start(t.id, mode_changes, mode);
       const double n[4] = {std::nearbyint(d[0]), std::nearbyint(d[1]), std::nearbyint(d[2]),
                            std::nearbyint(d[3])};
-      quantized.add_dx(static_cast<std::int64_t>(n[0]));
-      quantized.add_dy(static_cast<std::int64_t>(n[1]));
-      quantized.add_dvx(static_cast<std::int64_t>(n[2]));
-      quantized.add_dvy(static_cast<std::int64_t>(n[3]));
-      if (mode_changes) {
-        quantized.add_modes(((index - last_quantized_mode) << 2) |
-                            static_cast<std::uint32_t>(mode));
-        last_quantized_mode = index;
-      }
+      list.add_dx(static_cast<std::int64_t>(n[0]));
+      list.add_dy(static_cast<std::int64_t>(n[1]));
+      list.add_dvx(static_cast<std::int64_t>(n[2]));
+      list.add_dvy(static_cast<std::int64_t>(n[3]));
       stats_.max_position_error =
           std::max({stats_.max_position_error, std::fabs(t.x - (base.x + n[0] * q)),
                     std::fabs(t.y - (base.y + n[1] * q))});
@@ -343,25 +333,24 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
   (void)error;  // our own records are well formed; the tests check apply() on bad ones
   message_.set_view_hash(mirror_.hash());
   delta_has_news_ = !candidates.empty() || !left.empty() || reset;
-  delta_ = message_.SerializeAsString();
+  delta_ = std::make_shared<const std::string>(message_.SerializeAsString());
 }
 
-const std::string& View::full_state() {
+const std::shared_ptr<const std::string>& View::full_state() {
   if (settings_.encoding == physics::wire::ENCODING_FULL) return delta_;
-  if (full_state_ready_) return full_state_;
+  if (full_state_) return full_state_;
   physics::wire::Snapshot full;
   full.set_tick(last_tick_);
   if (settings_.state_hash) full.set_state_hash(state_hash_);
   full.set_full(true);
   physics::wire::ExactBodies& list = *full.mutable_exact();
-  ExactWriter writer(list);
+  RecordStarts<physics::wire::ExactBodies> records(list);
   for (const PredictedBody& b : mirror_.bodies()) {
-    writer.add(b.id, b.x, b.y, b.vx, b.vy, b.mode != PredictorMode::Ballistic, b.mode);
+    add_exact(records, b.id, b.x, b.y, b.vx, b.vy, b.mode != PredictorMode::Ballistic, b.mode);
   }
   if (list.id_gaps_size() == 0) full.clear_exact();
   full.set_view_hash(mirror_.hash());
-  full_state_ = full.SerializeAsString();
-  full_state_ready_ = true;
+  full_state_ = std::make_shared<const std::string>(full.SerializeAsString());
   return full_state_;
 }
 

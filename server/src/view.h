@@ -8,6 +8,7 @@
 // share one View, and so one encoding a tick. Socket-free: tests drive it alone.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -38,17 +39,16 @@ class View {
   // The last update as a serialized Snapshot (tick, hashes, records, left, full):
   // the part every client of this view shares. Empty of bodies when nothing moved
   // out of its prediction.
-  const std::string& delta() const { return delta_; }
+  // Shared with the sessions that write it: never copied per client or per tick.
+  const std::shared_ptr<const std::string>& delta() const { return delta_; }
   bool delta_has_news() const { return delta_has_news_; }
   const ViewUpdateStats& last_stats() const { return stats_; }
   // The whole mirror as exact records, full = true: what a client joining this
   // view (or asking for a full state) gets, so that it holds the mirror exactly.
-  const std::string& full_state();
+  const std::shared_ptr<const std::string>& full_state();
 
   const wire::ViewSettings& settings() const { return settings_; }
   const wire::Reconstruction& mirror() const { return mirror_; }
-  std::uint64_t last_tick() const { return last_tick_; }
-  bool updated() const { return updated_; }
 
  private:
   void update_full_encoding(const TruthFrame& frame, std::optional<std::uint64_t> own);
@@ -61,14 +61,12 @@ class View {
   // tick a body waits, its priority grows, so that none starves.
   std::map<std::uint64_t, double> waiting_priority_;
   physics::wire::Snapshot message_;
-  std::string delta_;
+  std::shared_ptr<const std::string> delta_;
   bool delta_has_news_ = false;
-  std::string full_state_;
-  bool full_state_ready_ = false;
+  std::shared_ptr<const std::string> full_state_;  // null until asked for this update
   ViewUpdateStats stats_;
   std::uint64_t last_tick_ = 0;
   std::uint64_t state_hash_ = 0;
-  bool updated_ = false;
 };
 
 }  // namespace server

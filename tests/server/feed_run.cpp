@@ -36,7 +36,7 @@ void FeedRun::tick() {
   const server::BodyChanges changes = sim_.take_changes();
   for (const phys::BodyId id : changes.added) feeds_.note_added(id.packed());
   for (const std::uint64_t id : changes.removed) feeds_.note_removed(id);
-  server::TruthFrame frame = server::read_truth(sim_.world(), result.tick, &frame_, sim_.dt());
+  server::TruthFrame frame = server::read_truth(sim_.world(), result.tick, &frame_);
   frame_ = std::move(frame);
   const auto outputs = feeds_.after_tick(frame_, sim_.world(), [&](server::FeedClient client) {
     server::ClientFields fields;
