@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The network figures of docs/BENCHMARKS.md ("Snapshots"): physics-netbench on each
-# scene, with 1, 8, 32 and 64 clients, for the three snapshot encodings side by side
-# in one run (full is the baseline: every body, exact, every tick). Writes
+# The network figures of docs/BENCHMARKS.md ("Network: snapshots by encoding"):
+# physics-netbench on each scene, with 1, 8, 32 and 64 clients, for the three
+# snapshot encodings side by side in one run (full is the baseline: every body,
+# exact, every tick). Writes
 # bench/results/netbench-<scene>.csv and prints the tables.
 #   bench/run-netbench.sh            # everything (about 12 minutes)
 #   BOTS=1,8 DURATION=2 bench/run-netbench.sh   # a quick look

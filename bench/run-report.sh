@@ -1,48 +1,210 @@
 #!/usr/bin/env bash
-# Runs physics-bench over the report's scenes and settings grid, ours and the peers
-# in one process, writes the CSVs and the log into docs/ and draws the Pareto plot
-# (docs/accuracy-pareto.svg) and the rain's cost over time (docs/accuracy-timeline-rain.svg)
-# with gnuplot.
-#   bench/run-report.sh [--full] [BUILD_DIR]   (default BUILD_DIR: build)
-# The main run is --quick (short stacks, 8 s of rain; ours and the peers); --full
-# makes it the issue's lengths for the peers too (slow: tens of minutes). Then ours
-# alone runs the long versions into docs/accuracy-long.csv (RUN_LONG=0 skips it).
+# Regenerates the data files that docs/ACCURACY.md and docs/BENCHMARKS.md cite, under
+# the names they cite, in bench/results/ (indexed by bench/results/README.md). Each run
+# below is one command of physics-bench, physics-microbench or bench/run-netbench.sh;
+# the plots are drawn from the CSVs with gnuplot.
+#   bench/run-report.sh [BUILD_DIR]                    every run (hours: the Box2D piles take about two)
+#   bench/run-report.sh --only grid,pyramid [BUILD_DIR] the named runs only
+#   bench/run-report.sh --list                         each run and the files it writes
+#   bench/run-report.sh --check                        runs nothing: every data file a doc
+#       (README.md, docs/*.md) names exists in bench/results/ and is one of these runs'
+#       outputs, every output is named by a doc and listed in the index, and
+#       bench/results/ holds nothing else. Exits 1 otherwise (a ctest test runs it).
+# BUILD_DIR defaults to build/. Each run prints its one-line summaries and profiles on
+# stderr.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(dirname "$here")"
-length="--quick"
-if [[ "${1:-}" == "--full" ]]; then length=""; shift; fi
-build="${1:-$root/build}"
+results="$here/results"
+
+# The runs, in the order they run, and the files each writes into bench/results/.
+runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
+      pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench replay-size
+      contact-events soak)
+declare -A writes=(
+  [grid]="accuracy.csv accuracy-pareto.svg"
+  [long]="accuracy-long.csv"
+  [stages]="accuracy-stages.csv accuracy-stages-ratios.csv"
+  [pyramid]="accuracy-pyramid.csv accuracy-pyramid-ratios.csv"
+  [rain-interleaved]="accuracy-rain-interleaved.csv accuracy-rain-interleaved-ratios.csv
+    accuracy-rain-interleaved-seconds.csv accuracy-rain-interleaved-run2-ratios.csv
+    accuracy-rain-interleaved-run3-ratios.csv"
+  [rain-iterations]="accuracy-rain-iterations.csv accuracy-rain-iterations-ratios.csv
+    accuracy-rain-iterations-ours.csv"
+  [rain-timeline]="accuracy-rain-timeline.csv accuracy-rain-timeline-ratios.csv
+    accuracy-rain-timeline-seconds.csv accuracy-rain-timeline.svg"
+  [pile-rain-timeline]="accuracy-pile-rain-timeline.csv accuracy-pile-rain-timeline-ratios.csv
+    accuracy-pile-rain-timeline-seconds.csv accuracy-pile-rain-mu0.2-timeline.svg"
+  [pile-rain-box2d]="accuracy-pile-rain-box2d-timeline.csv
+    accuracy-pile-rain-box2d-timeline-ratios.csv accuracy-pile-rain-box2d-timeline-seconds.csv"
+  [pile-rain-box2d-mu0.2]="accuracy-pile-rain-box2d-mu0.2-timeline.csv
+    accuracy-pile-rain-box2d-mu0.2-timeline-ratios.csv
+    accuracy-pile-rain-box2d-mu0.2-timeline-seconds.csv"
+  [micro]="benchmarks-micro.json"
+  [replay-size]="replay-size.csv"
+  [contact-events]="contact-events.csv"
+  [soak]="soak-moving-1000.csv"
+  # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
+  [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')"
+)
+
+all_outputs() { for r in "${runs[@]}"; do for f in ${writes[$r]}; do echo "$f"; done; done; }
+
+check() {
+  local failed=0 docs=("$root/README.md" "$root"/docs/*.md) outputs name f
+  outputs="$(all_outputs | sort -u)"
+  # Every data file a doc names. A name is a path ending in a data extension; links
+  # from docs/ reach the folder as ../bench/results/.
+  while read -r name; do
+    [[ -n "$name" ]] || continue
+    f="${name##*bench/results/}"
+    if [[ "$name" != *bench/results/"$f" ]]; then
+      echo "run-report --check: a doc names $name, which is not in bench/results/" >&2
+      failed=1
+    elif ! grep -qxF "$f" <<<"$outputs"; then
+      echo "run-report --check: a doc names bench/results/$f, which no run writes" >&2
+      failed=1
+    elif [[ ! -f "$results/$f" ]]; then
+      echo "run-report --check: a doc names bench/results/$f, which does not exist" >&2
+      failed=1
+    fi
+  done < <(grep -ohE '[A-Za-z0-9_./-]+\.(csv|svg|json|log|dat)\b' "${docs[@]}" | sort -u)
+  # Every output exists, is cited, and is in the index.
+  while read -r f; do
+    [[ -f "$results/$f" ]] || { echo "run-report --check: bench/results/$f is missing" >&2; failed=1; }
+    grep -qF "bench/results/$f" "${docs[@]}" ||
+      { echo "run-report --check: no doc cites bench/results/$f" >&2; failed=1; }
+    grep -qF "$f" "$results/README.md" ||
+      { echo "run-report --check: bench/results/README.md does not list $f" >&2; failed=1; }
+  done <<<"$outputs"
+  # Nothing else in the folder.
+  for f in "$results"/*; do
+    f="$(basename "$f")"
+    [[ "$f" == README.md ]] || grep -qxF "$f" <<<"$outputs" ||
+      { echo "run-report --check: bench/results/$f is written by no run" >&2; failed=1; }
+  done
+  [[ $failed -eq 0 ]] && echo "run-report --check: $(wc -l <<<"$outputs") data files, each cited and written by a run"
+  return "$failed"
+}
+
+only=""
+case "${1:-}" in
+  --check) check; exit ;;
+  --list) for r in "${runs[@]}"; do echo "$r:" ${writes[$r]}; done; exit 0 ;;
+  --only) only=",${2:?--only needs a list of runs},"; shift 2 ;;
+esac
+build="$(cd "${1:-$root/build}" && pwd)"
 bench="$build/bench/physics-bench"
-docs="$root/docs"
-mkdir -p "$here/results"
+if [[ -n "$only" ]]; then
+  for r in ${only//,/ }; do [[ -v "writes[$r]" ]] || { echo "run-report: no run $r (--list)" >&2; exit 2; }; done
+fi
+wanted() { [[ -z "$only" || "$only" == *",$1,"* ]]; }
 [[ -x "$bench" ]] || { echo "run-report: $bench not built (ninja -C $build physics-bench)" >&2; exit 1; }
 command -v gnuplot >/dev/null || { echo "run-report: gnuplot not found (apt install gnuplot-nox)" >&2; exit 1; }
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+out="$results"
+# The settings every run of the large scenes shares: the server's defaults, ours exact.
+ours=(--integrators exact --substeps 1 --iterations 4)
 
-echo "run-report: $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)" | tee "$here/results/accuracy-run.log"
-# Every scene; the whole grid on the small ones; peers on every scene. The runs of a
-# scene take turns of a second of simulated time (--interleave), so that a drift in
-# the machine's speed slows ours and the peers alike and the ratios stay steady.
-"$bench" $length --scenes all --peers-everywhere --interleave 60 \
-  --csv "$docs/accuracy.csv" --ratios "$docs/accuracy-ratios.csv" \
-  --timeline "$docs/accuracy-timeline.csv" 2>>"$here/results/accuracy-run.log"
-# The long runs the issue's bounds speak of (10,000 resting steps, 30 s of the rains), ours
-# only: the peers need about a minute per thousand steps of these scenes.
-if [[ -n "$length" && "${RUN_LONG:-1}" == "1" ]]; then
-  "$bench" --scenes column,pyramid,rain,pile-rain --engines ours --sleep both \
-    --integrators exact --substeps 1 --iterations 4 \
-    --csv "$docs/accuracy-long.csv" 2>>"$here/results/accuracy-run.log"
-fi
-echo "run-report: load average after: $(cut -d' ' -f1-3 /proc/loadavg)" | tee -a "$here/results/accuracy-run.log"
+run_grid() {  # every scene; the whole grid on the small ones; the peers on every scene
+  "$bench" --quick --scenes all --peers-everywhere --interleave 60 --csv "$out/accuracy.csv"
+  for scene in projectile-friction bounce-e1 bounce-e0.5 column-50; do
+    awk -v scene="$scene" -f "$here/report/pareto.awk" "$out/accuracy.csv" >"$tmp/$scene.dat"
+    awk -v scene="$scene" -v front=1 -f "$here/report/pareto.awk" "$out/accuracy.csv" |
+      sort -g >"$tmp/$scene.front.dat"
+  done
+  gnuplot -e "datadir='$tmp'; out='$out/accuracy-pareto.svg'" "$here/report/pareto.gp"
+}
+run_long() {  # the stacks over 10,000 steps, ours, sleeping on and off
+  "$bench" --scenes column,pyramid --engines ours --sleep both "${ours[@]}" \
+    --csv "$out/accuracy-long.csv"
+}
+run_stages() {
+  "$bench" --quick --scenes stages --peers-everywhere --sleep on \
+    --csv "$out/accuracy-stages.csv" --ratios "$out/accuracy-stages-ratios.csv"
+}
+run_pyramid() {
+  "$bench" --quick --scenes pyramid-5050 --engines ours,box2d,chipmunk "${ours[@]}" --sleep both \
+    --csv "$out/accuracy-pyramid.csv" --ratios "$out/accuracy-pyramid-ratios.csv"
+}
+run_rain-interleaved() {  # three runs of ours and Chipmunk taking turns of a second
+  local common=(--scenes rain-16000 --engines ours,chipmunk "${ours[@]}" --sleep on --interleave 60)
+  "$bench" "${common[@]}" --csv "$out/accuracy-rain-interleaved.csv" \
+    --ratios "$out/accuracy-rain-interleaved-ratios.csv" \
+    --timeline "$out/accuracy-rain-interleaved-seconds.csv"
+  for n in 2 3; do
+    "$bench" "${common[@]}" --csv "$tmp/run$n.csv" \
+      --ratios "$out/accuracy-rain-interleaved-run$n-ratios.csv"
+  done
+}
+run_rain-iterations() {  # fewer iterations of ours against Chipmunk, and below what holds
+  local common=(--scenes rain-16000 --integrators exact --substeps 1 --full-grid --sleep on --interleave 60)
+  "$bench" "${common[@]}" --engines ours,chipmunk --iterations 1,4 --velocity-iterations 2,8 \
+    --csv "$out/accuracy-rain-iterations.csv" --ratios "$out/accuracy-rain-iterations-ratios.csv"
+  "$bench" "${common[@]}" --engines ours --iterations 1 --velocity-iterations 1,2,4 \
+    --csv "$out/accuracy-rain-iterations-ours.csv"
+}
+run_rain-timeline() {  # all three engines, one after another, second by second
+  "$bench" --scenes rain-16000 --engines ours,chipmunk,box2d --integrators exact --substeps 1 \
+    --iterations 1,4 --velocity-iterations 4,8 --full-grid --sleep on \
+    --csv "$out/accuracy-rain-timeline.csv" --ratios "$out/accuracy-rain-timeline-ratios.csv" \
+    --timeline "$out/accuracy-rain-timeline-seconds.csv"
+  "$here/plot-timeline.sh" "$out/accuracy-rain-timeline-seconds.csv" rain-16000 \
+    "$out/accuracy-rain-timeline.svg"
+}
+run_pile-rain-timeline() {  # the 16,000-circle pile at three frictions, ours and Chipmunk
+  "$bench" --scenes pile-rain --pile-friction 0,0.2,0.5 --engines ours,chipmunk "${ours[@]}" \
+    --sleep on --csv "$out/accuracy-pile-rain-timeline.csv" \
+    --ratios "$out/accuracy-pile-rain-timeline-ratios.csv" \
+    --timeline "$out/accuracy-pile-rain-timeline-seconds.csv"
+  "$here/plot-timeline.sh" "$out/accuracy-pile-rain-timeline-seconds.csv" pile-rain-16000-mu0.2 \
+    "$out/accuracy-pile-rain-mu0.2-timeline.svg"
+}
+run_pile-rain-box2d() {  # the same pile, ours and Box2D (about an hour)
+  "$bench" --scenes pile-rain --pile-friction 0,0.5 --engines ours,box2d "${ours[@]}" --sleep on \
+    --csv "$out/accuracy-pile-rain-box2d-timeline.csv" \
+    --ratios "$out/accuracy-pile-rain-box2d-timeline-ratios.csv" \
+    --timeline "$out/accuracy-pile-rain-box2d-timeline-seconds.csv"
+}
+run_pile-rain-box2d-mu0.2() {  # (about 50 minutes)
+  "$bench" --scenes pile-rain --pile-friction 0.2 --engines ours,box2d "${ours[@]}" --sleep on \
+    --csv "$out/accuracy-pile-rain-box2d-mu0.2-timeline.csv" \
+    --ratios "$out/accuracy-pile-rain-box2d-mu0.2-timeline-ratios.csv" \
+    --timeline "$out/accuracy-pile-rain-box2d-mu0.2-timeline-seconds.csv"
+}
+run_micro() {
+  local micro="$build/bench/physics-microbench"
+  [[ -x "$micro" ]] || { echo "run-report: $micro not built (ninja -C $build physics-microbench)" >&2; return 1; }
+  "$micro" --benchmark_filter='StepPile|Collide|Intersect|Grid|Brute' --benchmark_min_time=0.5 \
+    --benchmark_out="$out/benchmarks-micro.json" --benchmark_out_format=json
+}
+run_netbench() { BUILD_DIR="$build" "$here/run-netbench.sh"; }
+run_replay-size() {  # server recordings of 8 clients at 60 Hz, 10 minutes each (seconds)
+  local size="$build/tests/replay/physics-replay-size"
+  [[ -x "$size" ]] || { echo "run-report: $size not built (ninja -C $build physics-replay-size)" >&2; return 1; }
+  "$size" --clients 8 --tick-rate 60 --seconds 600 >"$out/replay-size.csv"
+}
+run_contact-events() {  # the step with contact events off and on: a rain, a pile
+  local contact="$build/bench/physics-contact-bench"
+  [[ -x "$contact" ]] || { echo "run-report: $contact not built (ninja -C $build physics-contact-bench)" >&2; return 1; }
+  { "$contact" --scene rain --count 4000 --steps 600 --repeats 5
+    "$contact" --scene pile --count 4000 --steps 600 --repeats 5 | tail -n +2; } >"$out/contact-events.csv"
+}
+run_soak() {  # 64 churning clients on moving-1000 for 10 minutes, replayed (physics-soak)
+  local soak="$build/tests/soak/physics-soak"
+  [[ -x "$soak" ]] || { echo "run-report: $soak not built (ninja -C $build physics-soak)" >&2; return 1; }
+  rm -f "$out/soak-moving-1000.csv"
+  nice -n 19 "$soak" --scene "$root/scenes/moving-1000.textproto" --duration 600 --warmup 30 \
+    --encoding full --csv "$out/soak-moving-1000.csv" >&2
+}
 
-data="$(mktemp -d)"
-trap 'rm -rf "$data"' EXIT
-for scene in projectile-friction bounce-e1 bounce-e0.5 column-50; do
-  awk -v scene="$scene" -f "$here/report/pareto.awk" "$docs/accuracy.csv" > "$data/$scene.dat"
-  awk -v scene="$scene" -v front=1 -f "$here/report/pareto.awk" "$docs/accuracy.csv" \
-    | sort -g > "$data/$scene.front.dat"
+mkdir -p "$out"
+echo "run-report: $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
+for r in "${runs[@]}"; do
+  wanted "$r" || continue
+  echo "run-report: $r" >&2
+  "run_$r"
+  echo "run-report: wrote" ${writes[$r]} >&2
 done
-gnuplot -e "datadir='$data'; out='$docs/accuracy-pareto.svg'" "$here/report/pareto.gp"
-"$here/plot-timeline.sh" "$docs/accuracy-timeline.csv" "rain-16000" "$docs/accuracy-timeline-rain.svg"
-echo "run-report: wrote docs/accuracy.csv, docs/accuracy-ratios.csv, docs/accuracy-pareto.svg," \
-  "docs/accuracy-timeline.csv, docs/accuracy-timeline-rain.svg"
+echo "run-report: load average after: $(cut -d' ' -f1-3 /proc/loadavg)" >&2

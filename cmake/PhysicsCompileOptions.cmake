@@ -15,6 +15,17 @@ if(PHYSICS_SANITIZE)
     -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer)
   target_link_options(physics_options INTERFACE -fsanitize=address,undefined)
 endif()
+if(PHYSICS_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "PHYSICS_FUZZ needs clang (libFuzzer): -DCMAKE_CXX_COMPILER=clang++-14")
+  endif()
+  # Coverage for libFuzzer in every library of ours; the harnesses link its main
+  # (tests/fuzz/CMakeLists.txt).
+  target_compile_options(physics_options INTERFACE
+    -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all
+    -fno-omit-frame-pointer)
+  target_link_options(physics_options INTERFACE -fsanitize=address,undefined)
+endif()
 if(PHYSICS_TSAN)
   # -Wno-tsan: GCC warns that Asio's and libstdc++'s atomic_thread_fence is not
   # instrumented; that is their code, not a race of ours.

@@ -8,10 +8,17 @@ packages=(
   libasio-dev libprotobuf-dev protobuf-compiler
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev
+  # The server's /metrics endpoint and its Agones SDK calls (HTTP).
+  libcpp-httplib-dev
   # Peer engines, measured beside ours in physics-bench.
   libbox2d-dev libchipmunk-dev
   # Plots in docs/ACCURACY.md.
   gnuplot-nox
+  # scripts/test-clang.sh (gcc's hashes with clang) and scripts/test-fuzz.sh (libFuzzer).
+  clang-14 libclang-rt-14-dev
+  # physics-view: drawing (SDL2), its panel's font and PNG screenshots (stb); its
+  # window's test runs under a virtual X server (xvfb).
+  libsdl2-dev libstb-dev xvfb
 )
 
 missing=()

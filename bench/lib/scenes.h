@@ -1,6 +1,6 @@
 #pragma once
-// The named scenes of the report (issue 4) and the pile of issue 2, built as
-// engine-independent SceneSpecs. Every random choice comes from a fixed seed, so a
+// The named scenes of the report (docs/ACCURACY.md) and the microbenchmark's pile,
+// built as engine-independent SceneSpecs. Every random choice comes from a fixed seed, so a
 // scene is the same on every run and for every engine.
 #include <cstdint>
 #include <string>
@@ -39,7 +39,7 @@ SceneSpec pyramid_scene(int base, int steps);
 // (floor and two walls), falling from rest.
 SceneSpec rain_scene(int count, int steps, int first_window, int last_window);
 
-// Hard case 6 as tests/stability/pile_test.cpp builds it: `count` circles of radius
+// The 16,000-circle pile as tests/stability/pile_test.cpp builds it: `count` circles of radius
 // 0.5 rained into a container 100 m wide with walls 500 m high, 80 to a row 1.2 m
 // apart from 1 m up, each nudged by up to 0.1 m and thrown sideways at up to 1 m/s
 // (so that they tumble into a pile rather than land as columns), by the tests' own
@@ -47,8 +47,8 @@ SceneSpec rain_scene(int count, int steps, int first_window, int last_window);
 SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window);
 std::string pile_rain_scene_name(int count, double mu);
 
-// Issue 2's pile: `count` bodies, circles and boxes alternating, on a lattice in a
-// container about twice as wide as sqrt(count) metres.
+// The microbenchmark's pile (docs/BENCHMARKS.md): `count` bodies, circles and boxes
+// alternating, on a lattice in a container about twice as wide as sqrt(count) metres.
 SceneSpec pile_scene(int count);
 
 // "Model only what a scene needs": 4,000 bodies with random velocities in a closed

@@ -1,5 +1,6 @@
-// Issue 2's benchmark: time of World::step for a pile of N bodies (circles and boxes
-// alternating) in a container, N = 1,000, 4,000, 16,000, showing how the cost grows.
+// The step-cost benchmark (docs/BENCHMARKS.md): time of World::step for a pile of N
+// bodies (circles and boxes alternating) in a container, N = 1,000, 4,000, 16,000,
+// showing how the cost grows.
 #include <benchmark/benchmark.h>
 
 #include "engine.h"

@@ -6,7 +6,7 @@
 // 1.2 m apart from 1 m up, each with a random jitter of up to 0.1 m and a random
 // sideways speed of up to 1 m/s (the generator and layout of the tests'
 // rained piles, tests/stability/resting_test.cpp). With --per-row N the rows hold
-// N circles, centred, laid out as hard case 6's pile (tests/stability/pile_test.cpp:
+// N circles, centred, laid out as the 16,000-circle pile (tests/stability/pile_test.cpp:
 // --width 100 --circles 16000 --per-row 80 is that pile, circle for circle). Prints
 // the kinetic energy, the awake count and the worst overlap every 5 s, then the time
 // from which every circle stayed asleep (or "never"), and the pairs overlapping by
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
       ->check(bench::finite_range("friction", 0.0, 10.0));
   app.add_option("--seconds", o.seconds, "Simulated seconds at 60 Hz")->check(CLI::Range(1, 3600));
   app.add_option("--per-row", o.per_row,
-                 "Circles per row, centred, laid out as hard case 6's pile (0: as many as fit)")
+                 "Circles per row, centred, laid out as the 16,000-circle pile (0: as many as fit)")
       ->check(CLI::Range(0, 1000000));
   CLI11_PARSE(app, argc, argv);
   // Rows 1.2 m apart that are wider than the container would start circles inside

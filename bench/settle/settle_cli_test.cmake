@@ -18,7 +18,7 @@ expect_refused("--per-row 20 needs --width of at least 24.0 m, not 20" --per-row
 expect_refused("not in range" --circles 0)
 expect_refused("not in range" --seconds 0)
 
-# Hard case 6's layout, a few rows of it: every circle lands and sleeps, and the
+# The 16,000-circle pile's layout, a few rows of it: every circle lands and sleeps, and the
 # report names the overlap counts.
 execute_process(COMMAND ${SETTLE} --width 100 --circles 160 --per-row 80 --mu 0.5 --seconds 10
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)

@@ -33,7 +33,7 @@ std::vector<SceneEntry> scene_catalog(const Mode& mode) {
                        // Falling: the first second; settled: the last second.
                        return rain_scene(m.rain_count, rain_steps, 60, 60);
                      }});
-  // Hard case 6's pile as the stability test rains it (thrown sideways), 30 s:
+  // The 16,000-circle pile as the stability test rains it (thrown sideways), 30 s:
   // from up to 240 m the last circles land after about 7 s. The test's friction is
   // 0.5; other coefficients show how the cost depends on it (a frictionless pile
   // flows for seconds after the rain has landed, a rough one stops where it lands).

@@ -12,7 +12,7 @@ namespace bench {
 struct Mode {
   bool quick = false;
   int rain_count = 16000;
-  // Contact friction of hard case 6's pile rain: one scene per coefficient.
+  // Contact friction of the 16,000-circle pile's rain: one scene per coefficient.
   std::vector<double> pile_friction{0.5};
 };
 
@@ -23,7 +23,7 @@ struct SceneEntry {
   bool large = false;
   // Scenes where sleeping changes the cost: run with sleeping on and off.
   bool sleep_matters = false;
-  // Scenes the peers run by default (the comparison: rain and pyramid).
+  // Scenes the peers run by default (the lattice rain and the pyramid).
   bool peers_by_default = false;
   std::function<SceneSpec(const Mode&)> build;
 };

@@ -1,11 +1,12 @@
 // physics-client: connects to a physics-server, sends accelerations for its own
 // body and prints one line per snapshot; --bots N runs N clients as a load test.
-// Exit codes: 0 done, 1 bad flags, 2 could not connect or refused, 3 the session
-// ended early (the server dropped us or closed).
+// Exit codes: 0 done, 1 could not connect or refused, 2 bad flags (as physics-server
+// and physics-sim), 3 the session ended early (the server dropped us or closed).
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -20,7 +21,8 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr int kExitConnect = 2;
+constexpr int kExitConnect = 1;
+constexpr int kExitUsage = 2;
 constexpr int kExitLost = 3;
 
 struct Options {
@@ -69,6 +71,13 @@ int run_single(const Options& options) {
       return kExitLost;
     }
     fmt::print("{}\n", client_app::format_snapshot(*snapshot, options.json));
+    for (const client::ContactEvent& event : snapshot->contact_events) {
+      fmt::print("{}\n", client_app::format_contact_event(event, options.json));
+    }
+    if (snapshot->contact_events_dropped > 0) {
+      fmt::print(stderr, "physics-client: {} contact events lost over the server's limit\n",
+                 snapshot->contact_events_dropped);
+    }
     std::fflush(stdout);
     ++printed;
     while (auto error = connection.next_error(0ms)) {
@@ -109,7 +118,14 @@ int main(int argc, char** argv) {
   CLI::App app{"physics-client: joins a physics-server, steers its own body, prints snapshots"};
   Options options;
   app.add_option("--host", options.client.host, "Server address")->capture_default_str();
-  app.add_option("--port", options.client.port, "Server port")->capture_default_str();
+  int port = options.client.port;
+  app.add_option("--port", port, "Server port")->capture_default_str()->check(CLI::Range(1, 65535));
+  std::int64_t seat = -1;
+  app.add_option("--seat", seat,
+                 "The seat to play in (Hello.seat, 0 to the server's seats - 1): with "
+                 "--lockstep-players it decides the body, whatever order clients connect in; "
+                 "default: the lowest free seat")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{4294967295}));
   app.add_option("--token", options.client.token, "Access token, when the server wants one");
   app.add_option("--name", options.client.name, "Name shown in the server's log")
       ->capture_default_str();
@@ -159,7 +175,29 @@ int main(int argc, char** argv) {
                "Ask for the world's state hash in every snapshot");
   app.add_flag("--spectate", options.client.spectate,
                "Watch without a body (sends no inputs; the server's --max-spectators applies)");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--record", options.client.record_path,
+                 "Write every message received to FILE, a client recording (docs/REPLAY.md)")
+      ->excludes("--bots");
+  bool contacts = false;
+  std::vector<std::uint64_t> contact_bodies;
+  app.add_flag("--contacts", contacts,
+               "Print contact events: a player's own body's, a spectator's of every body");
+  app.add_option("--contact-bodies", contact_bodies,
+                 "Spectators: print the contact events of these body ids only (at most 64)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? 0 : kExitUsage;
+  }
+  options.client.port = static_cast<std::uint16_t>(port);
+  if (seat >= 0) options.client.seat = static_cast<std::uint32_t>(seat);
+  if (contacts || !contact_bodies.empty()) {
+    client::ContactSubscription subscription;
+    subscription.all = options.client.spectate && contact_bodies.empty();
+    subscription.body_ids = contact_bodies;
+    options.client.contacts = subscription;
+  }
   options.client.view.encoding = encoding == "exact"  ? client::Encoding::Exact
                                  : encoding == "full" ? client::Encoding::Full
                                                       : client::Encoding::Predicted;
@@ -167,7 +205,7 @@ int main(int argc, char** argv) {
   for (const double value : options.accel) {
     if (!std::isfinite(value)) {
       fmt::print(stderr, "physics-client: --accel must be finite numbers\n");
-      return 1;
+      return kExitUsage;
     }
   }
   return options.bots > 0 ? run_bots(options) : run_single(options);

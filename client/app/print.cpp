@@ -73,6 +73,22 @@ std::string format_snapshot(const client::Snapshot& snapshot, bool json) {
       snapshot.state_hash, snapshot.records, snapshot.wire_bytes);
 }
 
+std::string format_contact_event(const client::ContactEvent& event, bool json) {
+  const char* kind = event.end ? "end" : "begin";
+  if (json) {
+    return fmt::format(
+        "{{\"contact\":\"{}\",\"tick\":{},\"body_a\":{},\"body_b\":{},\"x\":{},\"y\":{},"
+        "\"nx\":{},\"ny\":{},\"closing_speed\":{}}}",
+        kind, event.tick, event.body_a, event.body_b, event.point.x, event.point.y, event.normal.x,
+        event.normal.y, event.closing_speed);
+  }
+  return fmt::format(
+      "contact {} tick {} bodies {} {} at ({:.6f}, {:.6f}) normal ({:.6f}, {:.6f}) closing "
+      "{:.6f} m/s",
+      kind, event.tick, event.body_a, event.body_b, event.point.x, event.point.y, event.normal.x,
+      event.normal.y, event.closing_speed);
+}
+
 std::string format_load_report(const client::LoadReport& report, bool json) {
   if (json) {
     return fmt::format(

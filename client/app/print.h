@@ -10,6 +10,8 @@ namespace client_app {
 
 std::string format_welcome(const client::Welcome& welcome, bool json);
 std::string format_snapshot(const client::Snapshot& snapshot, bool json);
+// One line per contact event (--contacts).
+std::string format_contact_event(const client::ContactEvent& event, bool json);
 std::string format_load_report(const client::LoadReport& report, bool json);
 
 }  // namespace client_app

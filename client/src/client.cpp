@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "convert.h"
+#include "recording/recording_file.h"
 #include "wire/framing.h"
 #include "wire/predictor.h"
 #include "wire/reconstruction.h"
@@ -89,6 +90,21 @@ Client::~Client() { close_socket(); }
 
 bool Client::connect(std::chrono::milliseconds timeout) {
   close_socket();
+  if (!config_.record_path.empty() && !recorder_) {
+    physics::recording::Header header;
+    physics::recording::ClientRun& run = *header.mutable_client();
+    run.set_host(config_.host);
+    run.set_port(config_.port);
+    run.set_name(config_.name);
+    run.set_spectator(config_.spectate);
+    std::string problem;
+    recorder_ = recording::RecordingWriter::create(config_.record_path, header, &problem);
+    if (!recorder_) {
+      fail(ConnectionState::ConnectFailed, "cannot record: " + problem);
+      return false;
+    }
+    record_start_ = Clock::now();
+  }
   io_ = std::make_unique<Io>(config_.max_message_bytes);
   error_ = {};
   welcome_ = {};
@@ -132,16 +148,27 @@ bool Client::connect(std::chrono::milliseconds timeout) {
   io_->socket.set_option(asio::ip::tcp::no_delay(true), ec);
 
   state_ = ConnectionState::AwaitingWelcome;
-  if (!send_frame(
-          wire::encode_frame(convert::make_hello(config_.protocol_version, config_.name,
-                                                 config_.token, config_.view, config_.spectate)))) {
+  physics::wire::ClientMessage hello =
+      convert::make_hello(config_.protocol_version, config_.name, config_.token, config_.view,
+                          config_.spectate, config_.seat);
+  if (config_.contacts) convert::set_contacts(*hello.mutable_hello(), *config_.contacts);
+  if (!send_frame(wire::encode_frame(hello))) {
     return false;
   }
   start_read();
-  if (!io_->run_until(deadline, [this] { return state_ != ConnectionState::AwaitingWelcome; })) {
-    fail(ConnectionState::WelcomeTimedOut,
-         "no Welcome within " + std::to_string(timeout.count()) + " ms");
-    return false;
+  // A lockstep lobby (--lockstep-players) sends Welcome only once every seat is
+  // taken: keep the session alive with Pings while waiting, as wait_until does.
+  const auto welcomed = [this] { return state_ != ConnectionState::AwaitingWelcome; };
+  for (;;) {
+    auto until = deadline;
+    if (config_.keepalive.count() > 0) until = std::min(until, last_sent_ + config_.keepalive);
+    if (io_->run_until(until, welcomed)) break;
+    if (Clock::now() >= deadline || io_->context.stopped()) {
+      fail(ConnectionState::WelcomeTimedOut,
+           "no Welcome within " + std::to_string(timeout.count()) + " ms");
+      return false;
+    }
+    if (!send_frame(wire::encode_frame(convert::make_ping(0, now_ns())))) return false;
   }
   return state_ == ConnectionState::Connected;
 }
@@ -306,6 +333,15 @@ void Client::on_bytes(std::size_t count) {
 }
 
 void Client::handle_frame(const std::string& frame) {
+  if (recorder_) {
+    physics::recording::Record record;
+    physics::recording::Received& received = *record.mutable_received();
+    received.set_micros(static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - record_start_)
+            .count()));
+    received.set_server_message(frame);
+    recorder_->append(record);
+  }
   physics::wire::ServerMessage message;
   if (!message.ParseFromString(frame)) {
     fail(ConnectionState::ProtocolError, "server sent a message that does not parse");

@@ -26,6 +26,11 @@ static_assert(static_cast<int>(ErrorCode::TooSlow) == pb::ERROR_TOO_SLOW);
 static_assert(static_cast<int>(ErrorCode::ProtocolVersion) == pb::ERROR_PROTOCOL_VERSION);
 static_assert(static_cast<int>(ErrorCode::RateLimited) == pb::ERROR_RATE_LIMITED);
 static_assert(static_cast<int>(ErrorCode::SpectatorInput) == pb::ERROR_SPECTATOR_INPUT);
+static_assert(static_cast<int>(ErrorCode::SeatTaken) == pb::ERROR_SEAT_TAKEN);
+static_assert(static_cast<int>(ErrorCode::SeatOutOfRange) == pb::ERROR_SEAT_OUT_OF_RANGE);
+static_assert(static_cast<int>(ErrorCode::InputClamped) == pb::ERROR_INPUT_CLAMPED);
+static_assert(static_cast<int>(ErrorCode::LockstepStraggler) == pb::ERROR_LOCKSTEP_STRAGGLER);
+static_assert(static_cast<int>(ErrorCode::InvalidSubscription) == pb::ERROR_INVALID_SUBSCRIPTION);
 static_assert(kProtocolVersion == pb::PROTOCOL_VERSION_CURRENT);
 static_assert(static_cast<int>(Encoding::Full) == pb::ENCODING_FULL);
 
@@ -62,6 +67,8 @@ Welcome from_wire(const pb::Welcome& message) {
   welcome.view = from_wire(message.view());
   welcome.max_players = message.max_players();
   welcome.spectator = message.spectator();
+  welcome.seat = message.seat();
+  welcome.seats = message.seats();
   return welcome;
 }
 
@@ -74,6 +81,12 @@ Snapshot header_from_wire(const pb::Snapshot& message) {
   snapshot.removed.assign(message.removed().begin(), message.removed().end());
   snapshot.full = message.full();
   snapshot.view_hash = message.view_hash();
+  snapshot.contact_events.reserve(static_cast<std::size_t>(message.contact_events_size()));
+  for (const auto& e : message.contact_events()) {
+    snapshot.contact_events.push_back({e.end(), e.tick(), e.body_a(), e.body_b(), vec(e.point()),
+                                       vec(e.normal()), e.closing_speed()});
+  }
+  snapshot.contact_events_dropped = message.contact_events_dropped();
   return snapshot;
 }
 
@@ -121,7 +134,7 @@ pb::ViewRequest to_wire(const ViewRequest& request) {
 ServerError from_wire(const pb::Error& message) {
   ServerError error;
   error.raw_code = static_cast<std::uint32_t>(message.code());
-  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::SpectatorInput)
+  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::InvalidSubscription)
                    ? static_cast<ErrorCode>(error.raw_code)
                    : ErrorCode::Unspecified;
   error.message = message.message();
@@ -134,7 +147,8 @@ Pong from_wire(const pb::Pong& message) {
 }
 
 pb::ClientMessage make_hello(std::uint32_t protocol_version, const std::string& name,
-                             const std::string& token, const ViewRequest& view, bool spectate) {
+                             const std::string& token, const ViewRequest& view, bool spectate,
+                             std::optional<std::uint32_t> seat) {
   pb::ClientMessage message;
   auto* hello = message.mutable_hello();
   hello->set_protocol_version(protocol_version);
@@ -142,7 +156,14 @@ pb::ClientMessage make_hello(std::uint32_t protocol_version, const std::string& 
   if (!token.empty()) hello->set_access_token(token);
   *hello->mutable_view() = to_wire(view);
   hello->set_spectate(spectate);
+  if (seat) hello->set_seat(*seat);
   return message;
+}
+
+void set_contacts(pb::Hello& hello, const ContactSubscription& contacts) {
+  auto* subscription = hello.mutable_contacts();
+  subscription->set_all(contacts.all);
+  for (const std::uint64_t id : contacts.body_ids) subscription->add_body_ids(id);
 }
 
 pb::ClientMessage make_ack(std::uint64_t tick) {

@@ -17,7 +17,8 @@ BodyShape from_wire(const physics::wire::BodyShape& message);
 
 physics::wire::ClientMessage make_hello(std::uint32_t protocol_version, const std::string& name,
                                         const std::string& token, const ViewRequest& view,
-                                        bool spectate);
+                                        bool spectate, std::optional<std::uint32_t> seat);
+void set_contacts(physics::wire::Hello& hello, const ContactSubscription& contacts);
 physics::wire::ClientMessage make_ack(std::uint64_t tick);
 physics::wire::ClientMessage make_full_state_request();
 physics::wire::ClientMessage make_input(std::uint64_t tick, double ax, double ay,

@@ -1,6 +1,8 @@
 // physics-sim: runs a scene headless for N fixed steps and prints a summary.
 //   physics-sim [--scene FILE] [--steps N] [--dt S] [--every K] [--json]
-// Exit codes: 0 done, 2 bad flags or a bad scene.
+//   physics-sim --replay FILE [--json]   (a server recording, docs/REPLAY.md)
+// Exit codes: 0 done (a replay: every recorded hash equal), 1 a replay diverged,
+// 2 bad flags, a bad scene or a bad recording.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +14,7 @@
 #include <string>
 #include <variant>
 
+#include "print_replay.h"
 #include "scene/scene.h"
 #include "sim_runner.h"
 
@@ -27,6 +30,7 @@ struct Flags {
   std::optional<double> dt;  // default: 1 / the scene's tick rate
   std::int64_t every = 0;
   bool json = false;
+  std::string replay_file;  // set: check this recording instead of running a scene
 };
 
 std::string hex(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
@@ -86,6 +90,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(std::int64_t{0}, kMaxSteps))
       ->capture_default_str();
   app.add_flag("--json", flags.json, "Print JSON (one object per line) instead of text");
+  app.add_option("--replay", flags.replay_file,
+                 "Step a server recording (physics-server --record) again and check every "
+                 "recorded hash; exits 1 at the first tick that differs")
+      ->excludes("--scene", "--steps", "--dt", "--every");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -94,6 +102,7 @@ int main(int argc, char** argv) {
     app.exit(e);
     return kExitBadInput;
   }
+  if (!flags.replay_file.empty()) return sim::replay_and_print(flags.replay_file, flags.json);
   // Checked here, not with CLI11's Range: a NaN passes every comparison.
   if (flags.dt && !(std::isfinite(*flags.dt) && *flags.dt > 0.0 && *flags.dt <= 1.0)) {
     fmt::print(stderr, "--dt: must be a finite number in (0, 1], got {}\n", *flags.dt);

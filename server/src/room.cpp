@@ -5,9 +5,9 @@
 namespace server {
 
 std::optional<phys::BodyId> Room::join(ClientId client, const scene::SceneDef& scene,
-                                       phys::World& world) {
+                                       phys::World& world, std::optional<std::uint32_t> seat) {
   if (contains(client)) return std::nullopt;
-  const std::optional<phys::Vec2> where = find_spawn_position(scene, world);
+  const std::optional<phys::Vec2> where = find_spawn_position(scene, world, seat);
   if (!where) return std::nullopt;
   phys::BodyDef def = scene.player;
   def.motion = phys::Motion::Dynamic;

@@ -12,13 +12,19 @@
 #include <optional>
 #include <set>
 
+#include "address_limits.h"
+#include "agones_sdk.h"
+#include "log_limiter.h"
+#include "metrics_http.h"
 #include "physics/clock.h"
 #include "physics/fixed_timestep.h"
+#include "seats.h"
 #include "server/lockstep_gate.h"
 #include "server/server.h"
 #include "server/simulation.h"
 #include "session.h"
 #include "snapshot_feeds.h"
+#include "stragglers.h"
 #include "truth_frame.h"
 #include "wire/view_settings.h"
 
@@ -30,6 +36,7 @@ class Server::Impl final : public SessionHost {
   ~Impl();
 
   std::uint16_t port() const { return port_; }
+  std::uint16_t metrics_port() const { return metrics_ ? metrics_->port() : 0; }
   void run();
   void stop();
   ServerStats stats() const;
@@ -38,15 +45,29 @@ class Server::Impl final : public SessionHost {
   void on_message(Session& session, physics::wire::ClientMessage& message) override;
   void on_closed(Session& session, DropReason reason) override;
   void on_bytes(std::size_t sent, std::size_t received) override;
+  void on_throttled(Session& session) override;
+  void on_handler_failed(Session& session, const char* what) override;
 
  private:
   void do_accept();
   void refuse_if_too_many_pending(Session& fresh);
+  // Refuses a connection at accept, without a session: one Error, written if the
+  // socket takes it at once, then closed.
+  void refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text);
+  // Per-cause log limit (see log_limiter.h): false means the line is counted, not written.
+  bool log_admits(const char* cause);
   void start_fixed_ticks();
   void arm_tick_timer();
   void on_tick_timer();
+  template <class Tick>
+  void guard_tick(Tick&& tick);
   void schedule_lockstep();
   void try_lockstep();
+  // The lockstep lobby (config.lockstep_players): bodies in seat order, then Welcomes.
+  void open_lobby();
+  void welcome_player(Session& session, phys::BodyId body, const wire::ViewSettings& view);
+  void drop_stragglers(const TickResult& result, bool timed_out);
+  void log_stats_line();
   TickResult run_one_tick();
   void broadcast(const TruthFrame& frame);
   void arm_housekeeping();
@@ -89,9 +110,26 @@ class Server::Impl final : public SessionHost {
   std::size_t joined_count_ = 0;  // players
   std::size_t spectator_count_ = 0;
   std::set<std::uint32_t> spectators_;  // session ids
-  std::uint32_t next_client_id_ = 1;
+  std::uint32_t next_client_id_ = 1;    // see client_ids.h
+  AddressLimits address_limits_;
+  LogLimiter log_limiter_;
   bool stopping_ = false;
   bool lockstep_check_posted_ = false;
+
+  // Seats, the lockstep lobby and its stragglers (seats.h, stragglers.h).
+  struct LobbySeat {
+    wire::ViewSettings view;
+  };
+  SeatTable seats_;
+  std::map<std::uint32_t, LobbySeat> lobby_;  // seated players not yet welcomed
+  bool lobby_open_ = true;                    // false until the lobby's seats are all taken
+  StragglerWatch stragglers_;
+  std::set<std::uint32_t> told_clamped_;  // players already told of a clamped input
+  std::chrono::steady_clock::time_point next_lockstep_due_{};  // Pace::Realtime
+  std::chrono::steady_clock::duration tick_period_{};
+  std::chrono::steady_clock::time_point next_stats_line_{};
+  std::unique_ptr<MetricsHttp> metrics_;
+  std::unique_ptr<AgonesSdk> agones_;
 
   mutable std::mutex stats_mutex_;
   ServerStats stats_;

@@ -1,6 +1,7 @@
 #include "session.h"
 
 #include <algorithm>
+#include <exception>
 #include <utility>
 
 #include "wire/messages.h"
@@ -14,6 +15,9 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& ho
       host_(host),
       limits_(limits),
       reader_(std::min(limits.max_hello_bytes, limits.max_message_bytes)),
+      byte_bucket_(limits.bytes_per_second, limits.byte_burst, clock::now()),
+      message_bucket_(limits.messages_per_second, limits.message_burst, clock::now()),
+      resume_timer_(socket_.get_executor()),
       accepted_(clock::now()),
       last_received_(accepted_) {
   std::error_code ec;
@@ -27,12 +31,54 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& ho
   peer_ = ec ? address_ : address_ + ":" + std::to_string(endpoint.port());
 }
 
+Session::~Session() = default;
+
 void Session::start() { do_read(); }
+
+bool Session::must_pause_reading(clock::time_point now) {
+  if (closing_) return false;  // draining discards input: no limit to apply
+  return frames_held_ || byte_bucket_.in_debt(now);
+}
+
+// A pause ends when its cause does: control messages written (do_write resumes), or
+// the buckets refilled (a timer).
+void Session::schedule_resume(clock::time_point now) {
+  if (resume_armed_ || closed_) return;
+  if (queued_control() >= limits_.pause_reading_at_control) return;
+  const auto wait = std::max(byte_bucket_.wait(now), message_bucket_.wait(now));
+  if (wait <= clock::duration::zero()) {
+    // Nothing owed: held frames wait only for the queue, which is below its mark.
+    resume_armed_ = true;
+    asio::post(socket_.get_executor(), [self = shared_from_this()] {
+      self->resume_armed_ = false;
+      self->resume();
+    });
+    return;
+  }
+  host_.on_throttled(*this);
+  resume_armed_ = true;
+  resume_timer_.expires_after(wait);
+  resume_timer_.async_wait([self = shared_from_this()](std::error_code ec) {
+    self->resume_armed_ = false;
+    if (!ec) self->resume();
+  });
+}
+
+void Session::resume() {
+  if (closed_) return;
+  if (frames_held_ && !closing_) handle_frames();
+  do_read();
+}
 
 void Session::do_read() {
   // One read at a time; none while an Error is still being written before a close,
   // and after it only to drain what the client still sends (see begin_draining).
   if (reading_ || closed_ || (closing_ && !draining_)) return;
+  const auto now = clock::now();
+  if (must_pause_reading(now)) {
+    schedule_resume(now);
+    return;
+  }
   reading_ = true;
   socket_.async_read_some(asio::buffer(read_buffer_), [self = shared_from_this()](
                                                           std::error_code ec, std::size_t bytes) {
@@ -49,6 +95,7 @@ void Session::do_read() {
 void Session::on_read(std::size_t bytes) {
   last_received_ = clock::now();
   host_.on_bytes(0, bytes);
+  byte_bucket_.spend(static_cast<double>(bytes), last_received_);
   if (!closing_) {
     reader_.feed(std::span<const std::uint8_t>(read_buffer_.data(), bytes));
     handle_frames();
@@ -68,7 +115,15 @@ void Session::begin_draining() {
 
 void Session::handle_frames() {
   std::string frame;
+  frames_held_ = false;
   while (!closing_) {
+    // Over the message rate, or replies piling up: leave the rest of the frames in
+    // the reader (at most one read's worth) and read nothing more until resumed.
+    const auto now = clock::now();
+    if (queued_control() >= limits_.pause_reading_at_control || message_bucket_.in_debt(now)) {
+      frames_held_ = true;
+      return;
+    }
     switch (reader_.next(frame)) {
       case wire::FrameStatus::NeedMore:
         return;
@@ -95,7 +150,18 @@ void Session::handle_frames() {
           DropReason::Malformed);
       return;
     }
-    host_.on_message(*this, message);
+    message_bucket_.spend(1.0, now);
+    // A handler that throws (bad_alloc, a bug) takes down this session only: every
+    // other session and the tick loop go on.
+    try {
+      host_.on_message(*this, message);
+    } catch (const std::exception& error) {
+      host_.on_handler_failed(*this, error.what());
+      close_with_error(physics::wire::ERROR_INTERNAL,
+                       "the server failed handling this connection's message; closing it",
+                       DropReason::InternalError);
+      return;
+    }
   }
 }
 
@@ -160,6 +226,8 @@ void Session::do_write() {
         }
         self->in_flight_.reset();
         self->do_write();
+        // Replies written: frames held for want of room may go on.
+        if (self->frames_held_) self->schedule_resume(clock::now());
       });
 }
 
@@ -225,6 +293,7 @@ void Session::finish(DropReason reason) {
   socket_.close(ignored);
   queue_.clear();
   waiting_snapshots_ = 0;
+  resume_timer_.cancel();
   host_.on_closed(*this, reason);
 }
 

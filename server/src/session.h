@@ -16,6 +16,7 @@
 
 #include "server/server.h"
 #include "snapshot_encoder.h"
+#include "token_bucket.h"
 #include "wire.pb.h"
 #include "wire/framing.h"
 
@@ -30,6 +31,10 @@ class SessionHost {
   // Called once, after the socket is closed.
   virtual void on_closed(Session& session, DropReason reason) = 0;
   virtual void on_bytes(std::size_t sent, std::size_t received) = 0;
+  // The session stopped reading for a while: it is over its byte or message rate.
+  virtual void on_throttled(Session& /*session*/) {}
+  // Handling one of its messages threw; the session closes with ERROR_INTERNAL.
+  virtual void on_handler_failed(Session& /*session*/, const char* /*what*/) {}
 
  protected:
   ~SessionHost() = default;
@@ -42,6 +47,17 @@ struct SessionLimits {
   // More queued snapshots than this means the feeds' window bound was broken.
   std::size_t max_queued_snapshots = 257;
   std::size_t max_queued_control = 256;
+  // With this many control messages (Pongs, Errors) waiting, the session handles no
+  // more of the client's messages until they are written: a burst of Pings waits in
+  // the buffers instead of getting the client dropped, and what it makes us hold
+  // stays bounded. Below max_queued_control, which only a bug could reach.
+  std::size_t pause_reading_at_control = 64;
+  // Rate limits on what the peer makes us read and handle (0: unlimited). Over
+  // them, reading pauses until the bucket refills.
+  double bytes_per_second = 1u << 20;
+  double byte_burst = 1u << 20;
+  double messages_per_second = 8192;
+  double message_burst = 8192;
   std::chrono::milliseconds idle_timeout{10000};
   std::chrono::milliseconds close_linger{1000};
   int socket_send_buffer_bytes = 0;  // 0: the OS default
@@ -52,6 +68,7 @@ class Session : public std::enable_shared_from_this<Session> {
   using clock = std::chrono::steady_clock;
 
   Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& host, SessionLimits limits);
+  ~Session();
 
   void start();
 
@@ -101,6 +118,11 @@ class Session : public std::enable_shared_from_this<Session> {
 
   void do_read();
   void on_read(std::size_t bytes);
+  // Reading paused (rate limits, or control messages waiting): resume when allowed.
+  bool must_pause_reading(clock::time_point now);
+  void schedule_resume(clock::time_point now);
+  void resume();
+  std::size_t queued_control() const { return queue_.size() - waiting_snapshots_; }
   void begin_draining();
   void handle_frames();
   void enqueue(Outgoing item);
@@ -115,6 +137,12 @@ class Session : public std::enable_shared_from_this<Session> {
   std::string address_;
   std::string name_;
   wire::FrameReader reader_;
+  TokenBucket byte_bucket_;
+  TokenBucket message_bucket_;
+  asio::steady_timer resume_timer_;
+  bool resume_armed_ = false;
+  // Whole frames may still be buffered in reader_: handle them before reading more.
+  bool frames_held_ = false;
   std::array<std::uint8_t, 64 * 1024> read_buffer_{};
   // The item being written is taken out of the queue, so that dropping waiting
   // items (erasing from the middle of the deque) can never move it.

@@ -7,10 +7,12 @@ namespace server {
 namespace {
 
 double pick_tick_rate(double requested, const scene::SceneDef& scene) {
-  // 0 means "the scene's"; anything else must itself be a valid rate.
+  // 0 means "the scene's"; anything else must itself be a valid rate. The lower
+  // bound is physics-server's --tick-rate range: a rate near zero (a denormal from a
+  // corrupted recording) would make dt = 1 / rate infinite.
   const double rate = requested == 0.0 ? scene.tick_rate : requested;
-  if (!(rate > 0.0 && rate <= 10000.0)) {
-    throw std::invalid_argument("tick rate must be in (0, 10000] ticks per second");
+  if (!(rate >= 0.001 && rate <= 10000.0)) {
+    throw std::invalid_argument("tick rate must be in [0.001, 10000] ticks per second");
   }
   return rate;
 }
@@ -24,11 +26,12 @@ Simulation::Simulation(scene::SceneDef scene, SimulationOptions options)
       dt_(1.0 / tick_rate_),
       world_(scene::build_world(scene_)) {}
 
-std::optional<phys::BodyId> Simulation::join(ClientId client) {
-  const std::optional<phys::BodyId> body = room_.join(client, scene_, world_);
+std::optional<phys::BodyId> Simulation::join(ClientId client, std::optional<std::uint32_t> seat) {
+  const std::optional<phys::BodyId> body = room_.join(client, scene_, world_, seat);
   if (body) {
     inputs_.emplace(client, ClientInputs{});
     changes_.added.push_back(*body);
+    if (recorder_) recorder_->joined(current_tick_, client, *body, seat);
   }
   return body;
 }
@@ -37,6 +40,7 @@ bool Simulation::leave(ClientId client) {
   const std::optional<phys::BodyId> body = room_.body_of(client);
   if (!body) return false;
   room_.leave(client, world_);
+  if (recorder_) recorder_->left(current_tick_, client);
   inputs_.erase(client);
   // A body added and removed between two snapshots never needs to be announced.
   auto& added = changes_.added;
@@ -63,6 +67,13 @@ InputCheck Simulation::submit_input(ClientId client, std::uint64_t tick, phys::V
   }
   it->second.file(check.apply_at, tick, check.acceleration);
   return check;
+}
+
+bool Simulation::file_recorded_input(ClientId client, std::uint64_t tick, phys::Vec2 acceleration) {
+  const auto it = inputs_.find(client);
+  if (it == inputs_.end() || tick <= current_tick_) return false;
+  it->second.file(tick, tick, acceleration);
+  return true;
 }
 
 bool Simulation::all_inputs_present() const {
@@ -93,8 +104,10 @@ TickResult Simulation::step_tick() {
     // Only the room knows the client's body: nothing else can be moved from here.
     const std::optional<phys::BodyId> body = room_.body_of(client);
     if (body) world_.set_acceleration(*body, taken.acceleration);
+    if (recorder_ && body) recorder_->applied(result.tick, client, taken.acceleration);
   }
   world_.step(dt_);
+  if (recorder_) recorder_->stepped(result.tick, world_);
   current_tick_ = result.tick;
   return result;
 }

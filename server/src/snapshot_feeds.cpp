@@ -50,7 +50,7 @@ void SnapshotFeeds::move_to(FeedClient client, Feed& feed, std::uint64_t view) {
 
 void SnapshotFeeds::join(FeedClient client, const wire::ViewSettings& settings,
                          std::optional<std::uint64_t> own_body) {
-  leave(client);
+  drop_feed(client);
   Feed feed;
   feed.settings = settings;
   feed.own = own_body;
@@ -61,6 +61,33 @@ void SnapshotFeeds::join(FeedClient client, const wire::ViewSettings& settings,
 }
 
 void SnapshotFeeds::leave(FeedClient client) {
+  drop_feed(client);
+  contact_filters_.erase(client);
+}
+
+void SnapshotFeeds::subscribe_contacts(FeedClient client, ContactFilter filter) {
+  contact_filters_[client] = std::move(filter);
+}
+
+// Every subscriber that has joined files the events it subscribed to.
+void SnapshotFeeds::file_contact_events(const TruthFrame& frame) {
+  if (frame.contact_events.empty()) return;
+  for (const auto& [client, filter] : contact_filters_) {
+    const auto it = feeds_.find(client);
+    if (it == feeds_.end()) continue;
+    Feed& feed = it->second;
+    for (const phys::ContactEvent& event : frame.contact_events) {
+      if (!filter.matches(event, feed.own)) continue;
+      if (feed.pending_contacts.size() < kMaxPendingContactEvents) {
+        feed.pending_contacts.push_back(event);
+      } else {
+        ++feed.dropped_contacts;
+      }
+    }
+  }
+}
+
+void SnapshotFeeds::drop_feed(FeedClient client) {
   const auto it = feeds_.find(client);
   if (it == feeds_.end()) return;
   auto view = views_.find(it->second.view);
@@ -118,6 +145,17 @@ std::string SnapshotFeeds::tail_for(Feed& feed, const ClientFields& fields,
   for (const std::uint64_t id : feed.removed) own.add_removed(id);
   feed.added.clear();
   feed.removed.clear();
+  // Contact events go with the next snapshot sent, at most a snapshot's worth.
+  const std::size_t events = std::min(feed.pending_contacts.size(), kMaxContactEventsPerSnapshot);
+  for (std::size_t i = 0; i < events; ++i) {
+    fill_contact_event(feed.pending_contacts[i], *own.add_contact_events());
+  }
+  feed.pending_contacts.erase(feed.pending_contacts.begin(),
+                              feed.pending_contacts.begin() + static_cast<std::ptrdiff_t>(events));
+  if (feed.dropped_contacts > 0) {
+    own.set_contact_events_dropped(feed.dropped_contacts);
+    feed.dropped_contacts = 0;
+  }
   // The input fields go only when they changed: a client keeps the last it got.
   if (!feed.fields_ever_sent ||
       fields.last_applied_input_tick != feed.fields_sent.last_applied_input_tick ||
@@ -132,6 +170,7 @@ std::string SnapshotFeeds::tail_for(Feed& feed, const ClientFields& fields,
 
 std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::World& world,
                                            const std::map<FeedClient, ClientFields>& fields) {
+  file_contact_events(frame);
   std::vector<FeedOutput> outputs;
   std::vector<std::uint64_t> ids;
   for (const auto& [id, entry] : views_) ids.push_back(id);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_subscription.h"
 #include "physics/world.h"
 #include "truth_frame.h"
 #include "view.h"
@@ -67,6 +68,12 @@ class SnapshotFeeds {
   void leave(FeedClient client);
   bool has(FeedClient client) const { return feeds_.count(client) > 0; }
 
+  // Contact events for `client` from its next snapshot on (it may subscribe before
+  // it joins: a player waiting in the lobby). Held until leave().
+  void subscribe_contacts(FeedClient client, ContactFilter filter);
+  // Whether the world must produce contact events.
+  bool any_contact_subscriber() const { return !contact_filters_.empty(); }
+
   // Bodies added to and removed from the world, for every client's next snapshot.
   void note_added(std::uint64_t id);
   void note_removed(std::uint64_t id);
@@ -99,6 +106,10 @@ class SnapshotFeeds {
     std::set<std::uint64_t> removed;
     ClientFields fields_sent;
     bool fields_ever_sent = false;
+    // Contact events not sent yet (they wait while no snapshot is due or the
+    // window is full), oldest first, and those lost over kMaxPendingContactEvents.
+    std::vector<phys::ContactEvent> pending_contacts;
+    std::uint32_t dropped_contacts = 0;
   };
   struct ViewEntry {
     std::unique_ptr<View> view;
@@ -112,12 +123,15 @@ class SnapshotFeeds {
   std::optional<std::uint64_t> shareable_view(const wire::ViewSettings& settings) const;
   static bool can_share(const wire::ViewSettings& settings);
   void move_to(FeedClient client, Feed& feed, std::uint64_t view);
+  void drop_feed(FeedClient client);
+  void file_contact_events(const TruthFrame& frame);
   std::string tail_for(Feed& feed, const ClientFields& fields, const phys::World& world);
 
   wire::Predictor predictor_;
   std::uint64_t heartbeat_ticks_;
   bool lockstep_;
   std::map<FeedClient, Feed> feeds_;
+  std::map<FeedClient, ContactFilter> contact_filters_;
   std::map<std::uint64_t, ViewEntry> views_;
   std::uint64_t next_view_ = 1;
   FeedStats stats_;

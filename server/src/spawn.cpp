@@ -44,7 +44,8 @@ phys::Aabb bounds_of(const phys::BodyDef& body, phys::Vec2 at) {
 }
 
 std::optional<phys::Vec2> find_spawn_position(const scene::SceneDef& scene,
-                                              const phys::World& world) {
+                                              const phys::World& world,
+                                              std::optional<std::uint32_t> seat) {
   std::vector<phys::Aabb> occupied;
   occupied.reserve(world.body_count());
   world.for_each_body([&](const phys::BodyState& body) { occupied.push_back(bounds_of(body)); });
@@ -57,6 +58,10 @@ std::optional<phys::Vec2> find_spawn_position(const scene::SceneDef& scene,
                         [&](const phys::Aabb& other) { return overlaps(box, other); });
   };
 
+  if (seat && !scene.spawn_points.empty()) {
+    const phys::Vec2 own = scene.spawn_points[*seat % scene.spawn_points.size()];
+    if (is_free(own)) return own;
+  }
   for (const phys::Vec2& point : scene.spawn_points) {
     if (is_free(point)) return point;
   }

@@ -15,7 +15,6 @@ TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthF
   frame.tick = tick;
   frame.state_hash = world.state_hash();
   frame.bodies.reserve(world.dynamic_body_count());
-  std::size_t p = 0;
   world.for_each_body([&](const phys::BodyState& body) {
     if (body.motion != phys::Motion::Dynamic) return;
     TruthBody t;
@@ -25,22 +24,35 @@ TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthF
     t.vx = body.velocity.x;
     t.vy = body.velocity.y;
     t.awake = body.awake;
+    frame.bodies.push_back(t);
+  });
+  // The world walks its slots in index order, and a packed id puts the slot's
+  // generation above its index: once a freed slot is reused (a client left and
+  // another joined), index order is no longer id order. Views write ids as
+  // ascending gaps, so the frame is put in id order here (one check per tick; a
+  // sort only after such a reuse).
+  const auto by_id = [](const TruthBody& a, const TruthBody& b) { return a.id < b.id; };
+  if (!std::is_sorted(frame.bodies.begin(), frame.bodies.end(), by_id)) {
+    std::sort(frame.bodies.begin(), frame.bodies.end(), by_id);
+  }
+  std::size_t p = 0;
+  for (TruthBody& t : frame.bodies) {
     t.previous_x = t.x;
     t.previous_y = t.y;
     t.previous_vx = t.vx;
     t.previous_vy = t.vy;
-    if (previous != nullptr) {
-      const auto& before = previous->bodies;
-      while (p < before.size() && before[p].id < t.id) ++p;
-      if (p < before.size() && before[p].id == t.id) {
-        t.previous_x = before[p].x;
-        t.previous_y = before[p].y;
-        t.previous_vx = before[p].vx;
-        t.previous_vy = before[p].vy;
-      }
+    if (previous == nullptr) continue;
+    const auto& before = previous->bodies;
+    while (p < before.size() && before[p].id < t.id) ++p;
+    if (p < before.size() && before[p].id == t.id) {
+      t.previous_x = before[p].x;
+      t.previous_y = before[p].y;
+      t.previous_vx = before[p].vx;
+      t.previous_vy = before[p].vy;
     }
-    frame.bodies.push_back(t);
-  });
+  }
+  frame.contact_events = world.contact_events();
+  for (phys::ContactEvent& event : frame.contact_events) event.step = tick;
   return frame;
 }
 

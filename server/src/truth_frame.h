@@ -29,6 +29,8 @@ struct TruthFrame {
   std::uint64_t tick = 0;
   std::uint64_t state_hash = 0;
   std::vector<TruthBody> bodies;  // dynamic bodies, ascending id
+  // The tick's contact events (while the world produces them), step set to `tick`.
+  std::vector<phys::ContactEvent> contact_events;
 
   const TruthBody* find(std::uint64_t id) const;
 };

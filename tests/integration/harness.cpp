@@ -4,35 +4,15 @@
 
 namespace itest {
 
-RunningServer::RunningServer(server::ServerConfig config, scene::SceneDef scene)
-    : server_(config, std::move(scene)), token_(config.token), thread_([this] { server_.run(); }) {}
-
-RunningServer::~RunningServer() {
-  server_.stop();
-  thread_.join();
-}
-
-client::ClientConfig RunningServer::exact_client_config(const std::string& name) const {
-  client::ClientConfig config = client_config(name);
-  config.view.encoding = client::Encoding::Exact;
-  config.view.state_hash = true;
-  return config;
-}
-
-client::ClientConfig RunningServer::client_config(const std::string& name) const {
-  client::ClientConfig config;
-  config.host = "127.0.0.1";
-  config.port = port();
-  config.name = name;
-  config.token = token_.value_or("");
-  return config;
-}
-
 server::ServerConfig test_config(bool lockstep) {
   server::ServerConfig config;
   config.bind = "127.0.0.1";
   config.port = 0;
   config.lockstep = lockstep;
+  // Every test connects from 127.0.0.1, many of them with bad Hellos on purpose:
+  // the per-address limits have tests of their own (attack_test.cpp).
+  config.failed_hellos_before_backoff = 1000000;
+  config.connects_per_second = 0.0;
   return config;
 }
 

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "client/client.h"
+#include "physics_testing/in_process_server.h"
 #include "scene/scene.h"
 #include "server/server.h"
 #include "wire.pb.h"
@@ -22,27 +23,29 @@ namespace itest {
 
 using namespace std::chrono_literals;
 
-// A server running on its own thread for the lifetime of this object.
+// A server running on its own thread for the lifetime of this object: physics::
+// testing's InProcessServer, the one users' own tests use, with this suite's
+// argument order.
 class RunningServer {
  public:
-  RunningServer(server::ServerConfig config, scene::SceneDef scene);
-  ~RunningServer();
-  RunningServer(const RunningServer&) = delete;
-  RunningServer& operator=(const RunningServer&) = delete;
+  RunningServer(server::ServerConfig config, scene::SceneDef scene)
+      : server_(std::move(scene), std::move(config)) {}
 
   std::uint16_t port() const { return server_.port(); }
   server::ServerStats stats() const { return server_.stats(); }
-  server::Server& get() { return server_; }
+  server::Server& get() { return server_.server(); }
   // A client config pointing at this server.
-  client::ClientConfig client_config(const std::string& name = "test-client") const;
+  client::ClientConfig client_config(const std::string& name = "test-client") const {
+    return server_.client_config(name);
+  }
   // The same, asking for exact state and the world's state hash in every snapshot:
   // for tests that compare a networked run with an in-process one bit for bit.
-  client::ClientConfig exact_client_config(const std::string& name = "test-client") const;
+  client::ClientConfig exact_client_config(const std::string& name = "test-client") const {
+    return server_.exact_client_config(name);
+  }
 
  private:
-  server::Server server_;
-  std::optional<std::string> token_;
-  std::thread thread_;
+  physics_testing::InProcessServer server_;
 };
 
 // A config for tests: port 0 and the given mode; everything else default.

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -76,6 +77,10 @@ bool parse_encoding(const std::string& name, client::Encoding& out) {
 
 }  // namespace
 
+int run_all(const std::vector<std::string>& scene_files, const std::vector<int>& bot_counts,
+            const std::vector<std::string>& encodings, double duration, double warmup,
+            double settle, double tick_rate, bool still, const std::string& csv_path);
+
 int main(int argc, char** argv) {
   CLI::App app{
       "physics-netbench: bandwidth, bits per body, reconstruction error, server time per tick "
@@ -114,12 +119,33 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 3600.0));
   app.add_option("--tick-rate", tick_rate, "Ticks per second (0: the scene's)")
+      ->check(CLI::Number)
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--still", still, "Bots send no inputs: they watch (no latency figures)");
   app.add_option("--csv", csv_path, "Also write the table as CSV to this file");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? 0 : 2;  // bad flags: 2, as every tool of ours
+  }
   spdlog::set_level(spdlog::level::warn);  // the table, not the server's log
+  try {
+    return run_all(scene_files, bot_counts, encodings, duration, warmup, settle, tick_rate, still,
+                   csv_path);
+  } catch (const std::invalid_argument& error) {
+    // A setting the server refuses (a tick rate the scene cannot take, ...).
+    fmt::print(stderr, "physics-netbench: {}\n", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    fmt::print(stderr, "physics-netbench: {}\n", error.what());
+    return 1;
+  }
+}
 
+int run_all(const std::vector<std::string>& scene_files, const std::vector<int>& bot_counts,
+            const std::vector<std::string>& encodings, double duration, double warmup,
+            double settle, double tick_rate, bool still, const std::string& csv_path) {
   std::vector<Run> runs;
   for (const std::string& file : scene_files) {
     if (file == "default") {

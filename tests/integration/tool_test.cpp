@@ -121,10 +121,22 @@ TEST(Tool, RefusedClientExitsNonZeroWithTheServersError) {
   config.token = "sesame";
   RunningServer server(config, scene::default_scene());
   const CommandRun run = run_command(client_command(server, "--token nope --ticks 1"));
-  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.exit_code, 1);
   std::string all;
   for (const auto& line : run.lines) all += line + "\n";
   EXPECT_NE(all.find("ERROR_BAD_TOKEN"), std::string::npos) << all;
+}
+
+TEST(Tool, SeatFlagAsksForThatSeat) {
+  server::ServerConfig config = test_config();
+  config.max_clients = 2;
+  RunningServer server(config, scene::default_scene());
+  const CommandRun taken = run_command(client_command(server, "--seat 2 --ticks 1"));
+  EXPECT_EQ(taken.exit_code, 1);
+  std::string all;
+  for (const auto& line : taken.lines) all += line + "\n";
+  EXPECT_NE(all.find("ERROR_SEAT_OUT_OF_RANGE"), std::string::npos) << all;
+  EXPECT_EQ(run_command(client_command(server, "--seat 1 --ticks 1")).exit_code, 0);
 }
 
 TEST(Tool, BotsModeReportsLatencyAndBandwidth) {

@@ -135,4 +135,46 @@ TEST(ClientInputs, ReportsWhetherAnInputIsDue) {
   EXPECT_FALSE(inputs.has_input_for(3));
 }
 
+// A million inputs inside a window of a million ticks, filed in the worst order (from
+// the far end back): one slot a tick, 32 bytes each, and all of it is given back as
+// the ticks are taken.
+TEST(ClientInputs, AFullWindowIsBoundedAndItsMemoryComesBack) {
+  constexpr std::uint64_t kWindow = 1000000;
+  ClientInputs inputs;
+  for (std::uint64_t tick = kWindow; tick >= 1; --tick) {
+    inputs.file(tick, tick, {static_cast<double>(tick % 7), 0.0});
+  }
+  EXPECT_EQ(inputs.pending_count(), kWindow);
+  EXPECT_LE(inputs.memory_bytes(), kWindow * 32);
+  // The same ticks again, newest wins: no growth.
+  for (std::uint64_t tick = 1; tick <= kWindow; ++tick) inputs.file(tick, tick, {1.0, 0.0});
+  EXPECT_EQ(inputs.pending_count(), kWindow);
+  EXPECT_LE(inputs.memory_bytes(), kWindow * 32);
+  inputs.take(kWindow / 2);
+  EXPECT_EQ(inputs.pending_count(), kWindow / 2);
+  EXPECT_LE(inputs.memory_bytes(), kWindow / 2 * 32);
+  EXPECT_EQ(inputs.take(kWindow).acceleration.x, 1.0);
+  EXPECT_EQ(inputs.pending_count(), 0u);
+  EXPECT_EQ(inputs.memory_bytes(), 0u);
+}
+
+// The span, not the count, is what a slot a tick costs: two inputs a window apart
+// hold the window until the first is taken, then only the second.
+TEST(ClientInputs, EmptyTicksBeforeTheNextInputAreNotKept) {
+  ClientInputs inputs;
+  inputs.file(10, 10, {1.0, 0.0});
+  inputs.file(1010, 1010, {2.0, 0.0});
+  EXPECT_EQ(inputs.pending_count(), 2u);
+  EXPECT_EQ(inputs.memory_bytes(), 1001 * 32u);
+  EXPECT_TRUE(inputs.take(10).fresh);
+  EXPECT_EQ(inputs.memory_bytes(), 32u);
+  EXPECT_FALSE(inputs.has_input_for(1009));
+  EXPECT_TRUE(inputs.has_input_for(1010));
+  // An input for a tick before the pending one grows the front.
+  inputs.file(500, 500, {3.0, 0.0});
+  EXPECT_TRUE(inputs.has_input_for(500));
+  EXPECT_EQ(inputs.take(600).acceleration.x, 3.0);
+  EXPECT_EQ(inputs.take(1010).acceleration.x, 2.0);
+}
+
 }  // namespace

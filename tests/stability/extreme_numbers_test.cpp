@@ -1,4 +1,4 @@
-// Hard case 9, extreme numbers. The limits (WorldSettings defaults): speeds are
+// Extreme numbers. The limits (WorldSettings defaults): speeds are
 // clamped to max_speed = 1000 m/s, accelerations to max_acceleration = 1e5 m/s^2.
 // Bounds: with accelerations of 1e30, velocities far beyond the limit, and masses
 // of 1e-6 against 1e6, every number in the world stays finite, every speed and

@@ -1,4 +1,4 @@
-// Hard case 7, far from the origin. The core uses doubles (Vec2, vec2.h): 100 km
+// Far from the origin. The core uses doubles (Vec2, vec2.h): 100 km
 // from the origin a double resolves 1.5e-11 m, a float only 7.8 mm, which is more
 // than the slop. Bound: each scene built 100,000 m away (on both axes) follows
 // the scene built at the origin to within 1e-6 m in position and 1e-6 m/s in

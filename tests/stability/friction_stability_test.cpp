@@ -1,4 +1,4 @@
-// Hard case 2, friction. Bound: for dt*k in {0.5, 1, 2, 10, 100}, with every
+// Velocity decay at any dt*k. Bound: for dt*k in {0.5, 1, 2, 10, 100}, with every
 // integrator, a sliding body's velocity never changes sign and never grows, on
 // any step. Its error against the exact decay v0*exp(-k t) is reported (as a test
 // property and on stdout); for the integrators whose friction is the exact decay

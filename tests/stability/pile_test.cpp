@@ -1,4 +1,4 @@
-// Hard case 6, the pile: 16,000 circles of radius 0.5 rained into a container
+// The 16,000-circle pile: 16,000 circles of radius 0.5 rained into a container
 // 100 m wide with walls 500 m high, from up to 240 m, each with a random sideways
 // speed of up to 1 m/s so that they tumble into a pile rather than land as columns.
 // Bounds:
@@ -114,7 +114,7 @@ class SettlingPile : public ::testing::Test {
 // Settling, with friction: by 30 s every circle is asleep (piles fall asleep from the
 // bottom up, docs/PHYSICS.md, "Sleep"), the overlap is within the bound, and for
 // 10 s more it stays asleep and unmoved. The stability test's friction is 0.5;
-// hard case 6 names none, so 1, 2 and 5 are checked too.
+// the pile's specification names none, so 1, 2 and 5 are checked too.
 // Measured (Release, current core): KE 0 at every friction; settled overlap
 // 0.0010, 0.0004, 0.0002 and 0.0002 m at 0.5, 1, 2 and 5 (frozen when the pair
 // falls asleep; 0.0010, 0.0014, 0.0021 and 0.0007 m with the support cone of 60

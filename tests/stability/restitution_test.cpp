@@ -1,4 +1,4 @@
-// Hard case 3, restitution, a ball of radius 0.5 dropped with its bottom 10 m over
+// Restitution: a ball of radius 0.5 dropped with its bottom 10 m over
 // the floor at 60 Hz. Apexes are the highest points of the simulated trajectory
 // (ApexTracker: the top of the parabola inside the step where v_y turns).
 // Bounds:

@@ -1,4 +1,4 @@
-// Hard case 5, seams: a floor of static unit boxes exactly side by side.
+// Seams: a floor of static unit boxes exactly side by side.
 // Bounds:
 //   a box sliding across it never catches on a seam: on every step its horizontal
 //   velocity equals its friction decay v0*exp(-k t) to 1e-12 relative (a catch

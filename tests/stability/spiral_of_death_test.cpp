@@ -1,4 +1,4 @@
-// Hard case 8, the spiral of death. A ManualClock jumps 10 s forward while a world
+// The spiral of death. A ManualClock jumps 10 s forward while a world
 // is driven by the fixed-timestep driver (60 Hz, at most 6 steps a frame).
 // Bounds: that frame runs exactly 6 steps, the other whole steps of the backlog
 // are dropped and counted, and afterwards one frame per period runs exactly one

@@ -1,4 +1,4 @@
-// Hard case 4, stacking. Each stack rests for 10,000 steps at 60 Hz (167 s), once
+// Stacking. Each stack rests for 10,000 steps at 60 Hz (167 s), once
 // with the default settings (the stack falls asleep after about half a second) and
 // once with sleeping off, so that the solver itself must hold it for all 10,000.
 // Bounds, checked on every step (the pyramid: every 10th step and the last):

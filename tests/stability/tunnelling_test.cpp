@@ -1,4 +1,4 @@
-// Hard case 1, tunnelling. Bound: a circle of radius 0.1 (and a box of side 0.1)
+// Tunnelling. Bound: a circle of radius 0.1 (and a box of side 0.1)
 // at 200 m/s toward a static wall 0.1 m thick, at 60 Hz (3.3 m a step, 11 times
 // the wall and bullet together), never gets further than the slop into the wall,
 // on any step. With continuous = false the same bullet does pass through: it is

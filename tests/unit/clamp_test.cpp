@@ -52,7 +52,8 @@ long double true_length(Vec2 v) {
 void expect_clamped(Vec2 original, Vec2 clamped, double limit, const OverLimit& c,
                     bool exact = true) {
   const double ulp = std::nextafter(limit, kHuge) - limit;
-  EXPECT_LE(std::abs(true_length(clamped) - static_cast<long double>(limit)), 2.0L * ulp)
+  EXPECT_LE(std::abs(true_length(clamped) - static_cast<long double>(limit)),
+            2.0L * static_cast<long double>(ulp))
       << "length " << static_cast<double>(true_length(clamped)) << ", limit " << limit;
   EXPECT_DOUBLE_EQ(static_cast<double>(true_length(clamped)), limit);
   // The direction: same signs, same ratio of the components.
@@ -75,7 +76,7 @@ TEST_P(ClampOverLimit, ClampLengthKeepsDirectionAndLandsOnTheLimit) {
   const OverLimit& c = GetParam();
   for (const double limit : {kMaxSpeed, kMaxAcceleration, 1.0, 1.0e200}) {
     SCOPED_TRACE(limit);
-    if (true_length(c.v) <= limit) continue;
+    if (true_length(c.v) <= static_cast<long double>(limit)) continue;
     bool clamped = false;
     const Vec2 out = clamp_length(c.v, limit, &clamped);
     EXPECT_TRUE(clamped);

@@ -1,4 +1,4 @@
-// Coulomb contact friction (beyond the lecture): a contact's tangential impulse is at
+// Coulomb contact friction (beyond the classic recipe): a contact's tangential impulse is at
 // most mu times its normal impulse, mu mixed sqrt(a*b). A box sliding on a floor then
 // decelerates at mu*g and stops after v^2 / (2 mu g); with mu = 0 nothing changes.
 #include <gtest/gtest.h>

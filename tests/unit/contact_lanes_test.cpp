@@ -264,7 +264,7 @@ TEST(ContactLanes, FixedAndEmptyLanesLeaveTheSharedZeroAlone) {
 }
 
 // End to end: a frictionless pile (every velocity iteration in lanes) ends on the
-// state hash that the scalar pass gave before the lanes existed (commit f5b0e31).
+// state hash that the scalar pass gives for it (recorded from the scalar pass alone).
 // Mixed masses, so that the weights differ; shock propagation on (the default).
 TEST(ContactLanes, FrictionlessPileEndsOnTheScalarPassHash) {
   World world;

@@ -115,9 +115,9 @@ TEST(StateHash, ChangesWhenOnePositionChangesByOneUlp) {
 }
 
 // The golden hash of build_scene + apply_inputs after 1000 steps at 60 Hz with
-// the default WorldSettings. Updated 2026-11-22 when contacts within 72.5 degrees
-// of vertical began to carry weight, not 60 (docs/PHYSICS.md, "Stacks: shock
-// propagation"); the Release and the Debug build both give it. A change here means results changed:
+// the default WorldSettings, with contacts within 72.5 degrees of vertical carrying
+// weight (docs/PHYSICS.md, "Stacks: shock propagation"); the Release and the Debug
+// build both give it. A change here means results changed:
 // if that is intended (a new formula, a new default), update the constant in the
 // same change and say why.
 constexpr std::uint64_t kGoldenHash = 0x88afdc4178bcaaed;

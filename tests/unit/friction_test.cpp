@@ -1,4 +1,4 @@
-// Friction: the exact decay v*exp(-k dt) that replaces the lecture's
+// Friction: the exact decay v*exp(-k dt) that replaces the classic recipe's
 // lerp(v, 0, dt*k). For every dt*k >= 0 it never changes the sign of v and never
 // makes |v| grow; the lerp does both once dt*k > 1, which the last tests document.
 #include <gtest/gtest.h>
@@ -109,18 +109,18 @@ TEST(Friction, HugeRateStopsWithoutOvershoot) {
   EXPECT_LT(v, 1.0e-300);
 }
 
-// Documentation of why the lecture's formula is not used: lerp(v, 0, t).
-TEST(LectureLerpFriction, OvershootsPastZeroAtOneAndAHalf) {
+// Documentation of why the classic recipe's lerp(v, 0, t) is not used.
+TEST(ClassicLerpFriction, OvershootsPastZeroAtOneAndAHalf) {
   EXPECT_EQ(lerp(10.0, 0.0, 1.5), -5.0);  // the velocity reversed
 }
 
-TEST(LectureLerpFriction, DivergesPastTwo) {
+TEST(ClassicLerpFriction, DivergesPastTwo) {
   double v = 10.0;
   for (int step = 0; step < 20; ++step) v = lerp(v, 0.0, 2.5);  // factor (1-2.5) = -1.5
   EXPECT_GT(std::abs(v), 10.0 * 3000.0);                        // 1.5^20 = 3325.3
 }
 
-TEST(LectureLerpFriction, AgreesWithExactDecayToFirstOrderForSmallDtK) {
+TEST(ClassicLerpFriction, AgreesWithExactDecayToFirstOrderForSmallDtK) {
   // For dt*k = 1e-3 the two differ by about (dt*k)^2/2 of v.
   const double lerp_value = lerp(10.0, 0.0, 1.0e-3);
   const double exact_value = apply_friction(10.0, 1.0e-3 / kDt, kDt);

@@ -20,6 +20,9 @@
 namespace physics::wire {
 class Snapshot;
 }
+namespace recording {
+class RecordingWriter;
+}
 
 namespace client {
 
@@ -44,6 +47,15 @@ struct ClientConfig {
   ViewRequest view;
   // Watch without a body (Hello.spectate): Welcome::spectator, no own body.
   bool spectate = false;
+  // The seat to play in (Hello.seat): with the same seats, a lockstep run gives the
+  // same bodies whatever order the clients connect in. Unset: the lowest free seat.
+  std::optional<std::uint32_t> seat;
+  // Contact events in every snapshot (Hello.contacts): Snapshot::contact_events.
+  std::optional<ContactSubscription> contacts;
+  // When set, every message received is appended, as it arrived, to this client
+  // recording (docs/REPLAY.md, "Client recordings"). Created at the first connect()
+  // (which fails with ConnectFailed when it cannot be), kept across reconnects.
+  std::string record_path;
 };
 
 // Why the client is not (or no longer) connected.
@@ -147,6 +159,8 @@ class Client {
   std::uint64_t ack_due_ = 0;  // the newest tick taken and not yet acknowledged
   bool ack_pending_ = false;
   bool full_state_asked_ = false;
+  std::unique_ptr<recording::RecordingWriter> recorder_;
+  std::chrono::steady_clock::time_point record_start_{};
 };
 
 template <class Predicate>

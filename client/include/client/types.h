@@ -102,7 +102,29 @@ struct Welcome {
   std::string scene_name;
   View view;
   std::uint32_t max_players = 0;
-  bool spectator = false;  // watching: body_id is 0, inputs are refused
+  bool spectator = false;   // watching: body_id is 0, inputs are refused
+  std::uint32_t seat = 0;   // the seat held (docs/PROTOCOL.md, "Seats")
+  std::uint32_t seats = 0;  // seats in all
+};
+
+// Which contact events to receive (Hello.contacts, docs/PROTOCOL.md "Contact
+// events"). A player leaves both empty: its own body's. A spectator sets `all`, or
+// lists up to 64 body ids.
+struct ContactSubscription {
+  bool all = false;
+  std::vector<std::uint64_t> body_ids;
+};
+
+// Two bodies began (or, with `end`, stopped) touching in tick `tick`.
+struct ContactEvent {
+  bool end = false;
+  std::uint64_t tick = 0;
+  std::uint64_t body_a = 0;  // the lower-indexed body
+  std::uint64_t body_b = 0;
+  Vec2 point;                  // where they touch
+  Vec2 normal;                 // unit, from a toward b
+  double closing_speed = 0.0;  // m/s along the normal, positive when approaching
+  bool operator==(const ContactEvent&) const = default;
 };
 
 // The world after tick `tick`, as this client holds it: every dynamic body in its
@@ -118,6 +140,10 @@ struct Snapshot {
   std::uint64_t last_applied_input_tick = 0;  // valid when has_applied_input
   std::vector<BodyShape> added;
   std::vector<std::uint64_t> removed;
+  // The subscribed contact events of the ticks since the previous snapshot, oldest
+  // first, and how many were lost over the server's limit.
+  std::vector<ContactEvent> contact_events;
+  std::uint32_t contact_events_dropped = 0;
   std::size_t records = 0;  // bodies this snapshot carried (the rest were predicted)
   bool full = false;        // a full state: the bodies held were rebuilt from it
   // Predicted and exact encodings: the server's hash of what this client holds, and
@@ -156,6 +182,11 @@ enum class ErrorCode : std::uint32_t {
   InvalidAck = 13,
   RateLimited = 14,
   SpectatorInput = 15,
+  SeatTaken = 16,
+  SeatOutOfRange = 17,
+  InputClamped = 18,  // not fatal: said once, at the first clamped input
+  LockstepStraggler = 19,
+  InvalidSubscription = 21,  // Hello.contacts not allowed as given
 };
 
 std::string_view to_string(ErrorCode code);

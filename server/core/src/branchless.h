@@ -2,8 +2,7 @@
 // The velocity pass's clamp of an impulse at zero, without a branch. Whether a
 // contact's impulse clamps changes from contact to contact in a flowing pile; the
 // compiler made std::max a branch there, and the profile put the most samples of
-// the pass just after it (docs/ACCURACY.md, "A branchless clamp in the velocity
-// pass").
+// the pass just after it (docs/PHYSICS.md, "Velocities: sequential impulses").
 #include <algorithm>
 
 #if defined(__SSE2__)

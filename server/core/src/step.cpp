@@ -35,6 +35,10 @@ void StepRunner::run() {
     move_both_axes();
   }
   collide_on_x();
+  if (w_.contact_events_on) {
+    PhaseTimer t(s_.profile, w_.profile.narrowphase);
+    note_touching_pairs();
+  }
   {
     PhaseTimer t(s_.profile, w_.profile.resolve);
     restitution();  // and, with hold_, update_held's work
@@ -128,12 +132,14 @@ void WorldImpl::step(double dt) {
   const auto start = std::chrono::steady_clock::now();
   profile = {};
   const double h = dt / settings.substeps;
+  if (contact_events_on) contact_tracker.begin_step();
   for (int i = 0; i < settings.substeps; ++i) {
     StepRunner(*this, h).run();
     ++counters.substeps;
   }
   ++steps;
   ++counters.steps;
+  if (contact_events_on) counters.contact_events += contact_tracker.finish(steps, bodies);
   if (settings.profile) {
     profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -90,6 +90,7 @@ inline void StepRunner::sweep(std::uint32_t p, Body& b, int axis, AxisPath& path
     ++w_.counters.swept_hits;
     // Bounce at the time of impact and spend the rest of the step going back.
     const double v_hit = path.velocity(first_t);
+    if (w_.contact_events_on) note_swept_hit(b, w_.active_[p], axis, level, v_hit, hit_body);
     // A sleeping body struck by a swept move wakes: harder than a resting contact
     // presses when struck from above, at all from the side, and from below
     // however slowly when the mover is driven into it (its acceleration, with

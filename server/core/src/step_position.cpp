@@ -84,7 +84,7 @@ inline void StepRunner::prefetch_pair(const Body* bodies, const Candidate& cand)
   __builtin_prefetch(&bodies[cand.upper]);
 }
 
-// Per-axis resolution of box pairs: the lecture's penetration on the axis, pushed
+// Per-axis resolution of box pairs: the recipe's penetration on the axis, pushed
 // apart by penetration plus slop, up if above, down if below. The axis is a
 // template argument: picking a component by a run-time axis cost a branch per
 // use, and the registers those branches tied up spilled the pair loop's state.
@@ -239,7 +239,7 @@ inline void StepRunner::hold_by_static_friction(const Candidate& cand, Body& a, 
 // nothing has no creep to undo. Any other slide is a body escaping a squeeze: the
 // pushes of its other contacts lift it out of a pocket, or up a wall, because
 // nothing else can move. Undoing that left it at a fixed point deep inside its
-// neighbours, and the more friction the deeper: up to 0.096 m in hard case 6's
+// neighbours, and the more friction the deeper: up to 0.096 m in the 16,000-circle
 // pile at friction 5 (docs/PHYSICS.md, "Squeezes at high friction").
 inline bool StepRunner::may_undo_slide(const Body& body, Vec2 undo) const {
   const Vec2 drive = driving_acceleration(body);

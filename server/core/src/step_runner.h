@@ -1,8 +1,8 @@
 #pragma once
-// One sub-step of the world, in the lecture's order:
+// One sub-step of the world, in the classic recipe's order (docs/PHYSICS.md):
 //   friction; acceleration and gravity; move on Y, collide on Y; move on X,
 //   collide on X; restitution.
-// plus what the lecture leaves out and a server needs: a broadphase, swept motion
+// plus what the recipe leaves out and a server needs: a broadphase, swept motion
 // against static bodies (nothing tunnels), shock propagation for stacks, and sleep.
 // The runner is declared here and defined phase by phase in the step*.cpp files;
 // what more than one phase calls in its inner loops is defined here, inline.
@@ -42,7 +42,7 @@ class StepRunner {
   // (supports). At 60 degrees, a circle sunk into a narrow gap between two resting
   // neighbours, meeting them less than 30 degrees above level, was no load of theirs:
   // the passes split its pushes half and half, pressing them apart into their
-  // pockets. Hard case 6's pile without friction then fell asleep only at 60 s, with
+  // pockets. The frictionless 16,000-circle pile then fell asleep only at 60 s, with
   // rows of side-by-side circles compressed end to end (0.0148 m); at 72.5 degrees it
   // sleeps at 43.5 s with 0.0042 m (docs/PHYSICS.md, "Stacks: shock propagation").
   static constexpr double kSupportCosine = 0.3;
@@ -219,6 +219,11 @@ class StepRunner {
   inline void remember_impulses();
   static inline Vec2 cancelled_velocity(Vec2 v, Vec2 correction, double per_second);
   inline void wake_if_hit(const Candidate& cand, const ContactRecord& contact, double closing);
+
+  // step_contact_events.cpp: what contact events need noted (only when they are on)
+  void note_touching_pairs();
+  void note_swept_hit(const Body& mover, std::uint32_t mover_slot, int axis, double level,
+                      double speed, std::uint32_t obstacle_slot);
 
   // step_sleep.cpp: the world's bounds, and sleep
   void hold_in_bounds();

@@ -132,6 +132,7 @@ bool WorldImpl::remove_body(BodyId id) {
   }
   if (b->is_dynamic()) --dynamic_count_;
   --alive_count_;
+  if (contact_events_on) contact_tracker.removed(id.index);
   b->alive = false;
   free_slots_.push_back(id.index);
   lists_dirty_ = true;
@@ -283,6 +284,16 @@ void World::step(double dt) {
 
 std::uint64_t World::state_hash() const { return impl_->state_hash(); }
 std::uint64_t World::step_count() const { return impl_->steps; }
+void World::set_contact_events(bool on) {
+  if (on == impl_->contact_events_on) return;
+  impl_->contact_events_on = on;
+  impl_->contact_tracker.clear();
+}
+bool World::contact_events_on() const { return impl_->contact_events_on; }
+const std::vector<ContactEvent>& World::contact_events() const {
+  return impl_->contact_tracker.events();
+}
+std::size_t World::contacts_in_touch() const { return impl_->contact_tracker.contact_count(); }
 const WorldSettings& World::settings() const { return impl_->settings; }
 const StageCounters& World::counters() const { return impl_->counters; }
 const StepProfile& World::last_profile() const { return impl_->profile; }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contact_lanes.h"
+#include "contact_tracker.h"
 #include "physics/broadphase.h"
 #include "physics/world.h"
 
@@ -33,7 +34,7 @@ struct WarmImpulses {
 // Aligned to a cache line, so that the hot fields below are one line and the warm
 // ones the next: unaligned, a body's first 64 bytes straddled two lines, and every
 // contact touched three of a body's lines instead of two (a few per cent of a step
-// in a flowing pile of 16,000 circles, docs/ACCURACY.md).
+// in a flowing pile of 16,000 circles).
 struct alignas(64) Body {
   // Hot: read by every pass over the contacts (the first cache line, and the
   // second up to the generation).
@@ -126,6 +127,9 @@ class WorldImpl {
   StepProfile profile;
   std::uint64_t steps = 0;
   std::vector<Body> bodies;
+  // Contact events (World::set_contact_events): off, nothing notes a touch.
+  bool contact_events_on = false;
+  ContactTracker contact_tracker;
   // Warm-start impulses, per slot: how many, and where (warm_pool from warm_first,
   // or warm[slot] when warm_first is kWarmInSlot).
   std::vector<std::uint8_t> warm_count;

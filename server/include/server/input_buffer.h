@@ -3,7 +3,7 @@
 // input passes before it is filed. No sockets and no clock: tests drive it directly.
 #include <cstddef>
 #include <cstdint>
-#include <map>
+#include <deque>
 
 #include "physics/vec2.h"
 
@@ -31,14 +31,17 @@ InputCheck check_input(std::uint64_t tick, phys::Vec2 acceleration, std::uint64_
                        std::uint64_t max_ticks_ahead, double max_acceleration);
 
 // One client's inputs. Each tick holds at most one input, so a client can never
-// buffer more than max_ticks_ahead + 1 of them.
+// buffer more than max_ticks_ahead + 1 of them. They sit in one slot a tick, from
+// the oldest pending tick to the newest (sizeof(Slot), 32 bytes, a tick of that
+// span, empty ticks included), in blocks that are freed as the ticks are taken:
+// the memory of a full window comes back once its ticks have passed.
 class ClientInputs {
  public:
   // Files an accepted input. At one tick, the input naming the later tick wins
   // (an on-time input beats a late one refiled there); equal names: the newest.
   void file(std::uint64_t apply_at, std::uint64_t named_tick, phys::Vec2 acceleration);
   bool has_input_for(std::uint64_t tick) const;
-  bool has_any_input() const { return !pending_.empty(); }
+  bool has_any_input() const { return pending_ > 0; }
 
   struct Taken {
     phys::Vec2 acceleration{};  // what the body holds from this tick on
@@ -51,14 +54,22 @@ class ClientInputs {
   // The tick named by the newest input applied (the client's own numbering).
   std::uint64_t last_applied_tick() const { return last_applied_tick_; }
   bool has_applied() const { return has_applied_; }
-  std::size_t pending_count() const { return pending_.size(); }
+  std::size_t pending_count() const { return pending_; }
+  // The bytes the pending inputs hold now: one slot a tick of their span.
+  std::size_t memory_bytes() const { return slots_.size() * sizeof(Slot); }
 
  private:
-  struct Pending {
-    std::uint64_t named_tick;
-    phys::Vec2 acceleration;
+  struct Slot {
+    std::uint64_t named_tick = 0;
+    phys::Vec2 acceleration{};
+    bool present = false;
   };
-  std::map<std::uint64_t, Pending> pending_;  // by apply-at tick, ascending
+  // slots_[i] is tick first_tick_ + i. The first slot always holds an input (or
+  // there are none), so the front is the earliest pending input.
+  std::deque<Slot> slots_;
+  std::uint64_t first_tick_ = 0;
+  std::size_t pending_ = 0;
+  std::size_t peak_slots_ = 0;  // the largest span since the deque was last renewed
   phys::Vec2 held_{};
   std::uint64_t last_applied_tick_ = 0;
   bool has_applied_ = false;

@@ -18,8 +18,10 @@ class Room {
  public:
   // Adds the client's body (the scene's player template at a free spawn position).
   // nullopt when the client is already in, or no spawn position is free.
+  // `seat`: see find_spawn_position.
   std::optional<phys::BodyId> join(ClientId client, const scene::SceneDef& scene,
-                                   phys::World& world);
+                                   phys::World& world,
+                                   std::optional<std::uint32_t> seat = std::nullopt);
   // Removes the client's body; false when the client was not in the room.
   bool leave(ClientId client, phys::World& world);
 

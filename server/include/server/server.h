@@ -3,9 +3,11 @@
 // at once, so port() is valid), call run() on a thread of your choice, and stop()
 // from anywhere. physics-server (server/app/) is a thin command line around this.
 // Design, threads, queues and limits: docs/SERVER.md.
+#include <array>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -29,6 +31,30 @@ struct ServerConfig {
   // advance while no client sends inputs, and are not paced by the wall clock.
   bool lockstep = false;
   std::chrono::milliseconds lockstep_timeout{250};
+  // Lockstep lobby: with N > 0 there are N seats (instead of max_clients), and no
+  // player is welcomed until all N are taken; then the bodies are made in seat order
+  // and every player is welcomed at tick 0. Needs lockstep. docs/PROTOCOL.md, "Seats".
+  int lockstep_players = 0;
+  // Asap steps each tick as soon as its inputs are in; Realtime also waits for the
+  // tick's time at the tick rate, as a game runs.
+  enum class Pace : std::uint8_t { Asap, Realtime };
+  Pace lockstep_pace = Pace::Asap;
+  // A player whose input was missing at this many consecutive ticks stepped after a
+  // timeout is dropped (ERROR_LOCKSTEP_STRAGGLER); 0 never drops.
+  int lockstep_max_timeouts = 8;
+  // Serve /healthz, /readyz and /metrics over HTTP on this port (0: a free one,
+  // see Server::metrics_port()); unset: no HTTP endpoint.
+  std::optional<std::uint16_t> metrics_port;
+  // Log one line of statistics this often; 0: never.
+  std::chrono::milliseconds stats_log_interval{0};
+  // Speak the Agones SDK's local REST API at 127.0.0.1:this port (physics-server
+  // takes it from AGONES_SDK_HTTP_PORT): Ready, Health every agones_health_period,
+  // the players and capacity labels, Shutdown on stop. Unset: not on Agones.
+  std::optional<std::uint16_t> agones_sdk_port;
+  std::chrono::milliseconds agones_health_period{2000};
+  // Lockstep lobby: once the match has begun and every player has left, stop (and,
+  // on Agones, tell it to shut this game server down).
+  bool shutdown_after_match = false;
   int max_clients = 64;
   // Spectators (Hello.spectate) watch without a body and are counted apart from the
   // players: at most this many at once.
@@ -48,6 +74,26 @@ struct ServerConfig {
   // max_pending_per_address from one address. They never count against max_clients.
   int max_pending = 64;
   int max_pending_per_address = 8;
+  // Per address: after failed_hellos_before_backoff failed Hellos in a row (bad
+  // token, bad version, malformed, unexpected), it is refused at accept
+  // (ERROR_RATE_LIMITED) for hello_backoff, doubled at each further failure up to
+  // hello_backoff_max; a join clears the count, and so does a quiet
+  // hello_backoff_max after the refusal ended. And it may open at most
+  // connects_per_second connections a second (bursts of connect_burst).
+  int failed_hellos_before_backoff = 8;
+  std::chrono::milliseconds hello_backoff{1000};
+  std::chrono::milliseconds hello_backoff_max{60000};
+  double connects_per_second = 20.0;
+  double connect_burst = 40.0;
+  // What one connection may make us read and handle: bytes and messages a second,
+  // with bursts. Over it, the server stops reading from it until the rate allows
+  // (its bytes wait in the kernel's buffers, TCP slows the sender); it is not
+  // dropped. An honest client (inputs and acks at 1 kHz, bursts of pings) stays
+  // far below both. 0: unlimited.
+  double peer_bytes_per_second = 1u << 20;
+  double peer_byte_burst = 1u << 20;
+  double peer_messages_per_second = 8192;
+  double peer_message_burst = 8192;
   // The largest window (snapshots sent and not yet acknowledged) a client may ask
   // for in Hello.view; the default window is min(12, this). A client whose window
   // is full skips ticks, so no client ever holds more than this many snapshots in
@@ -70,6 +116,15 @@ struct ServerConfig {
   std::chrono::milliseconds heartbeat{1000};
   // Install SIGINT/SIGTERM handlers on the server's io_context (physics-server does).
   bool handle_signals = false;
+  // Called on the server's thread after each tick is stepped and its snapshots are
+  // queued, with the tick and the world's state hash (tests and embedders observe
+  // runs with it; keep it short, it delays the next tick). If it throws, the tick
+  // counts as failed: ServerStats::tick_failure says why and the server shuts down.
+  std::function<void(std::uint64_t tick, std::uint64_t state_hash)> on_tick;
+  // When set, every join, leave, input applied and tick hash is written to this file
+  // (docs/REPLAY.md; physics-sim --replay steps it again). A file that cannot be
+  // created is refused with std::invalid_argument.
+  std::string record_path;
 };
 
 // Why sessions ended, as counted in ServerStats::dropped.
@@ -89,11 +144,23 @@ enum class DropReason : std::uint8_t {
   InvalidView,        // Hello.view with a field out of range
   HandshakeTimeout,   // no Hello within handshake_timeout
   TooManyPending,     // too many connections that have not joined (in all, or from one address)
+  AddressLimited,     // refused at accept: the address failed too many Hellos, or connects too fast
+  InternalError,      // handling its message threw (e.g. bad_alloc); the server goes on
+  SeatTaken,          // Hello.seat held by another player
+  SeatOutOfRange,     // Hello.seat not below the number of seats
+  LockstepStraggler,  // missed lockstep_max_timeouts timed-out ticks in a row
+  InvalidSubscription,  // Hello.contacts not allowed as given
 };
 const char* to_string(DropReason reason);
 
+// Upper bounds (seconds) of the tick-time histogram's buckets; one more bucket
+// counts the ticks above the last bound.
+inline constexpr std::array<double, 12> kTickSecondsBounds = {
+    0.0000625, 0.000125, 0.00025, 0.0005, 0.001, 0.002, 0.004, 0.008, 0.016, 0.032, 0.064, 0.128};
+
 struct ServerStats {
   std::size_t connected_clients = 0;  // sessions that completed Hello and hold a body
+  std::size_t lobby_clients = 0;      // players seated in the lockstep lobby, not yet welcomed
   std::size_t spectators = 0;         // sessions that completed Hello to watch
   std::size_t open_connections = 0;   // every open socket, joined or not
   std::uint64_t ticks_stepped = 0;
@@ -114,6 +181,12 @@ struct ServerStats {
   std::size_t views = 0;               // views now (clients with equal views share one)
   std::uint64_t invalid_acks = 0;
   std::uint64_t rate_limited = 0;  // full-state requests while one was pending
+  // Times a connection's reading was paused for being over its byte or message rate.
+  std::uint64_t throttled_reads = 0;
+  std::uint64_t failed_hellos = 0;         // Hellos refused (counted per address too)
+  std::uint64_t suppressed_log_lines = 0;  // per-cause log limit: lines not written
+  // Bytes the players' pending inputs hold now (ClientInputs::memory_bytes, summed).
+  std::size_t input_buffer_bytes = 0;
   // The worst position error of any client's reconstruction against the world, over
   // every view update (per axis, metres): the tolerance bounds it, a byte budget may not.
   double max_view_error = 0.0;
@@ -129,8 +202,21 @@ struct ServerStats {
   double last_tick_seconds = 0.0;
   double max_tick_seconds = 0.0;
   double total_tick_seconds = 0.0;  // over all ticks: mean = total / ticks_stepped
+  // Ticks by their time: bucket i counts those in (bound[i-1], bound[i]].
+  std::array<std::uint64_t, kTickSecondsBounds.size() + 1> tick_seconds_buckets{};
+  std::uint64_t tick_overruns = 0;  // ticks whose step and encoding took longer than a period
+  bool lockstep_started = false;    // lockstep: the lobby (if any) is full, ticks may step
+  bool shutting_down = false;
+  // Set when a tick threw (for example std::bad_alloc inside the step): the world may
+  // be half stepped, so the server shuts down instead of serving it; the message says
+  // why, and physics-server exits 1.
+  std::string tick_failure;
+  // When the last tick stepped (steady clock); for readiness.
+  std::chrono::steady_clock::time_point last_tick_at{};
 
   std::uint64_t dropped_total() const;
+  // Sessions that ended for any reason but a Bye or the server's own shutdown.
+  std::uint64_t dropped_by_fault() const;
 };
 
 class Server {
@@ -152,6 +238,8 @@ class Server {
   void stop();
   // A consistent copy, safe from any thread.
   ServerStats stats() const;
+  // The HTTP port of /healthz, /readyz and /metrics (0 without config.metrics_port).
+  std::uint16_t metrics_port() const;
 
  private:
   class Impl;

@@ -6,6 +6,7 @@
 // on the scene, the order clients joined and left between ticks, and the inputs.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "scene/scene.h"
 #include "server/input_buffer.h"
 #include "server/room.h"
+#include "server/tick_recorder.h"
 
 namespace server {
 
@@ -41,13 +43,26 @@ class Simulation {
   explicit Simulation(scene::SceneDef scene, SimulationOptions options = {});
 
   // Gives the client a body at a free spawn position (see spawn.h). nullopt when
-  // the client already has one or no position is free.
-  std::optional<phys::BodyId> join(ClientId client);
+  // the client already has one or no position is free. `seat` puts the seat's own
+  // spawn point first (find_spawn_position).
+  std::optional<phys::BodyId> join(ClientId client,
+                                   std::optional<std::uint32_t> seat = std::nullopt);
   bool leave(ClientId client);
 
   // Checks and files one input of `client` (see check_input). Inputs of clients
   // not in the room are refused (NotJoined) and never filed.
   InputCheck submit_input(ClientId client, std::uint64_t tick, phys::Vec2 acceleration);
+  // Files an input a recording says was applied at `tick` (> current_tick()), as it
+  // was, without check_input: it was checked and clamped when it was recorded, and
+  // clamping twice could move it by a rounding. False for a client not in the room.
+  bool file_recorded_input(ClientId client, std::uint64_t tick, phys::Vec2 acceleration);
+
+  // From now on, joins, leaves, applied inputs and tick hashes go to `recorder`
+  // (nullptr stops recording and closes the file). Recording changes no result. A
+  // replay starts from the scene's world at tick 0, so attach it before the first
+  // join and the first tick (the server does so in its constructor).
+  void record_to(std::unique_ptr<TickRecorder> recorder) { recorder_ = std::move(recorder); }
+  TickRecorder* recorder() const { return recorder_.get(); }
 
   // For the lockstep gate: about the next tick (current_tick() + 1).
   bool all_inputs_present() const;
@@ -63,6 +78,9 @@ class Simulation {
   std::uint64_t max_ticks_ahead() const { return options_.max_ticks_ahead; }
   const scene::SceneDef& scene() const { return scene_; }
   const phys::World& world() const { return world_; }
+  // Contact events from the world's steps (World::set_contact_events): they change
+  // no state, so a run records and replays the same with them on or off.
+  void set_contact_events(bool on) { world_.set_contact_events(on); }
   const Room& room() const { return room_; }
   std::optional<phys::BodyId> body_of(ClientId client) const { return room_.body_of(client); }
   // The client's input state (nullptr for a client not in the room).
@@ -80,6 +98,7 @@ class Simulation {
   std::map<ClientId, ClientInputs> inputs_;
   std::uint64_t current_tick_ = 0;
   BodyChanges changes_;
+  std::unique_ptr<TickRecorder> recorder_;
 };
 
 }  // namespace server

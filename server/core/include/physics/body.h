@@ -23,7 +23,7 @@ struct BodyDef {
   double mass = 1.0;            // dynamic only; static bodies have infinite mass
   double restitution = 0.0;     // 0 stops, 1 keeps the normal speed
   Vec2 friction{};              // per axis, the velocity decay rate in 1/s
-  // Coulomb friction between touching bodies (beyond the lecture): the tangential
+  // Coulomb friction between touching bodies (beyond the classic recipe): the tangential
   // impulse of a contact is at most this times its normal impulse. 0 is frictionless.
   double contact_friction = 0.0;
 };

@@ -1,8 +1,9 @@
 #pragma once
-// The lecture's formulas, one function each, so that tests check them against
-// hand-computed values and the world uses exactly these. The ones the step calls per
-// body or per pair are defined here, inline: a call into another translation unit
-// per pair (and a Contact returned through memory) cost more than the formula.
+// The classic recipe's formulas (docs/PHYSICS.md), one function each, so that tests
+// check them against hand-computed values and the world uses exactly these. The ones
+// the step calls per body or per pair are defined here, inline: a call into another
+// translation unit per pair (and a Contact returned through memory) cost more than the
+// formula.
 #include <algorithm>
 #include <cmath>
 
@@ -14,7 +15,7 @@ namespace phys {
 // Linear interpolation: (1 - t) * v0 + t * v1.
 constexpr double lerp(double v0, double v1, double t) { return (1.0 - t) * v0 + t * v1; }
 
-// The lecture's friction, v = lerp(v, 0, dt*k), overshoots once dt*k > 1 and
+// The recipe's velocity decay, v = lerp(v, 0, dt*k), overshoots once dt*k > 1 and
 // diverges past 2. It is the first-order step of dv/dt = -k*v, whose exact
 // solution over dt is v*exp(-k*dt): the same meaning (decay toward zero at rate k),
 // stable for every dt*k >= 0, never changing sign and never growing.
@@ -86,7 +87,7 @@ inline double position_at(Integrator integrator, double x, double v, double a, d
   return dt > 0.0 ? x + (end.position - x) * (t / dt) : x;
 }
 
-// Box-box, the lecture's four separating conditions (a's bottom above b's top, a's
+// Box-box, the recipe's four separating conditions (a's bottom above b's top, a's
 // top below b's bottom, a's left right of b's right, a's right left of b's left).
 // If none holds they intersect: touching counts as intersecting.
 constexpr bool box_bottom_above_top(const Aabb& a, const Aabb& b) { return a.min.y > b.max.y; }

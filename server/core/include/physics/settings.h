@@ -12,7 +12,7 @@ namespace phys {
 enum class Integrator : std::uint8_t {
   // x += v*dt, then v += a*dt (position uses the old velocity). First order.
   ExplicitEuler,
-  // The lecture's recipe: v = friction(v); v += a*dt; x += v*dt. First order,
+  // The classic recipe's integration: v = friction(v); v += a*dt; x += v*dt. First order,
   // symplectic. Friction uses the exact decay factor exp(-k*dt), never the lerp.
   SemiImplicitEuler,
   // The closed-form solution of dv/dt = a - k*v over the step (a held constant):
@@ -27,7 +27,7 @@ struct WorldSettings {
   Integrator integrator = Integrator::Exact;
   // Each step(dt) runs this many sub-steps of dt/substeps.
   int substeps = 1;
-  // After resolving a penetration bodies are left this far apart (the lecture's
+  // After resolving a penetration bodies are left this far apart (the recipe's
   // "tiny amount"), so that resting bodies do not touch on the other axis.
   double slop = 1.0e-5;
   // Gauss-Seidel passes over the contacts of each collide phase.

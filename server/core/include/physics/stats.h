@@ -26,13 +26,18 @@ struct StageCounters {
   std::uint64_t speed_clamps = 0;  // velocities clamped to max_speed
   std::uint64_t acceleration_clamps = 0;
   std::uint64_t bounds_clamps = 0;  // dynamic bodies held inside the bounds
+  // Contact events (World::set_contact_events); both stay 0 while they are off.
+  std::uint64_t contact_pair_tests = 0;  // candidate pairs tested for touching
+  std::uint64_t contact_events = 0;      // begin and end events produced
+
+  bool operator==(const StageCounters&) const = default;
 };
 
 // Seconds spent in each phase of the last step() (all zero unless profiling is on).
 struct StepProfile {
   double integrate = 0.0;    // friction, acceleration, gravity, moves
   double broadphase = 0.0;   // grid build and candidate pairs
-  double narrowphase = 0.0;  // exact overlap tests and swept tests
+  double narrowphase = 0.0;  // exact overlap and swept tests (and contact events' touch tests)
   double resolve = 0.0;      // penetration resolution and restitution
   double sleep = 0.0;        // sleep and wake bookkeeping
   double total = 0.0;

@@ -1,0 +1,36 @@
+#pragma once
+// physics-view's command line (docs/VIEWER.md, Flags).
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "client/client.h"
+
+namespace viewer {
+
+// Exit codes: 0 done, 1 the server could not be reached or the picture not
+// written, 2 bad flags (as physics-server).
+inline constexpr int kExitFailure = 1;
+inline constexpr int kExitUsage = 2;
+
+struct ViewerOptions {
+  client::ClientConfig client;  // a spectator asking for exact state and the hash
+  int width = 1280;
+  int height = 720;
+  std::optional<double> scale;          // pixels per metre; default: fit the world
+  std::optional<client::Vec2> center;   // world point at the centre; default: fit
+  std::optional<std::uint64_t> follow;  // body id the camera follows
+  bool panel = true;
+  std::string screenshot;          // a PNG path: headless, one picture, exit
+  std::uint64_t after_ticks = 60;  // ticks after joining that the picture shows
+  int connect_timeout_ms = 5000;
+  int screenshot_timeout_ms = 30000;  // waiting for the tick, at most
+  std::string replay;                 // a client recording to play instead of joining a server
+  double speed = 1.0;                 // with --replay: the playback speed
+};
+
+// Parses argv. On --help or a bad flag returns the exit code (0 or kExitUsage)
+// after printing; otherwise nullopt and `options` filled in.
+std::optional<int> parse_options(int argc, char** argv, ViewerOptions& options);
+
+}  // namespace viewer

@@ -1,0 +1,48 @@
+#include "world_shapes.h"
+
+namespace viewer {
+
+void WorldShapes::reset(const std::vector<client::BodyShape>& bodies) {
+  shapes_.clear();
+  statics_ = 0;
+  joined_ = 0;
+  left_ = 0;
+  for (const client::BodyShape& body : bodies) {
+    if (shapes_.insert_or_assign(body.body_id, body).second && body.is_static) ++statics_;
+  }
+}
+
+void WorldShapes::apply(const client::Snapshot& snapshot) {
+  for (const client::BodyShape& body : snapshot.added) {
+    if (!shapes_.insert_or_assign(body.body_id, body).second) continue;
+    if (body.is_static) {
+      ++statics_;
+    } else {
+      ++joined_;
+    }
+  }
+  for (const std::uint64_t id : snapshot.removed) {
+    const auto it = shapes_.find(id);
+    if (it == shapes_.end()) continue;
+    if (it->second.is_static) {
+      --statics_;
+    } else {
+      ++left_;
+    }
+    shapes_.erase(it);
+  }
+}
+
+const client::BodyShape* WorldShapes::find(std::uint64_t id) const {
+  const auto it = shapes_.find(id);
+  return it == shapes_.end() ? nullptr : &it->second;
+}
+
+std::vector<client::BodyShape> WorldShapes::list() const {
+  std::vector<client::BodyShape> out;
+  out.reserve(shapes_.size());
+  for (const auto& [id, shape] : shapes_) out.push_back(shape);
+  return out;
+}
+
+}  // namespace viewer

@@ -1,0 +1,218 @@
+#include "server/recorded_scene.h"
+
+#include <bit>
+#include <cmath>
+
+namespace server {
+namespace {
+
+namespace rec = physics::recording;
+
+rec::Vec2 to_recorded(phys::Vec2 v) {
+  rec::Vec2 out;
+  out.set_x(v.x);
+  out.set_y(v.y);
+  return out;
+}
+
+phys::Vec2 from_recorded(const rec::Vec2& v) { return {v.x(), v.y()}; }
+
+rec::Integrator to_recorded(phys::Integrator integrator) {
+  switch (integrator) {
+    case phys::Integrator::ExplicitEuler:
+      return rec::INTEGRATOR_EXPLICIT_EULER;
+    case phys::Integrator::SemiImplicitEuler:
+      return rec::INTEGRATOR_SEMI_IMPLICIT_EULER;
+    case phys::Integrator::Exact:
+      return rec::INTEGRATOR_EXACT;
+  }
+  return rec::INTEGRATOR_UNSPECIFIED;
+}
+
+rec::BodyDef to_recorded(const phys::BodyDef& def) {
+  rec::BodyDef out;
+  out.set_shape(def.shape == phys::Shape::Circle ? rec::SHAPE_CIRCLE : rec::SHAPE_BOX);
+  out.set_is_static(def.motion == phys::Motion::Static);
+  *out.mutable_position() = to_recorded(def.position);
+  *out.mutable_velocity() = to_recorded(def.velocity);
+  *out.mutable_acceleration() = to_recorded(def.acceleration);
+  out.set_radius(def.radius);
+  *out.mutable_half_extents() = to_recorded(def.half_extents);
+  out.set_mass(def.mass);
+  out.set_restitution(def.restitution);
+  *out.mutable_friction() = to_recorded(def.friction);
+  out.set_contact_friction(def.contact_friction);
+  return out;
+}
+
+bool from_recorded(const rec::BodyDef& in, phys::BodyDef& def) {
+  switch (in.shape()) {
+    case rec::SHAPE_CIRCLE:
+      def.shape = phys::Shape::Circle;
+      break;
+    case rec::SHAPE_BOX:
+      def.shape = phys::Shape::Box;
+      break;
+    default:
+      return false;
+  }
+  def.motion = in.is_static() ? phys::Motion::Static : phys::Motion::Dynamic;
+  def.position = from_recorded(in.position());
+  def.velocity = from_recorded(in.velocity());
+  def.acceleration = from_recorded(in.acceleration());
+  def.radius = in.radius();
+  def.half_extents = from_recorded(in.half_extents());
+  def.mass = in.mass();
+  def.restitution = in.restitution();
+  def.friction = from_recorded(in.friction());
+  def.contact_friction = in.contact_friction();
+  return true;
+}
+
+rec::WorldSettings to_recorded(const phys::WorldSettings& s) {
+  rec::WorldSettings out;
+  *out.mutable_gravity() = to_recorded(s.gravity);
+  out.set_integrator(to_recorded(s.integrator));
+  out.set_substeps(s.substeps);
+  out.set_slop(s.slop);
+  out.set_position_iterations(s.position_iterations);
+  out.set_velocity_iterations(s.velocity_iterations);
+  out.set_warm_starting(s.warm_starting);
+  out.set_continuous(s.continuous);
+  out.set_shock_propagation(s.shock_propagation);
+  out.set_hold_resting_support(s.hold_resting_support);
+  out.set_rest_speed(s.rest_speed);
+  out.set_max_speed(s.max_speed);
+  out.set_max_acceleration(s.max_acceleration);
+  out.set_sleeping(s.sleeping);
+  out.set_sleep_speed(s.sleep_speed);
+  out.set_sleep_time(s.sleep_time);
+  out.set_has_bounds(s.has_bounds);
+  *out.mutable_bounds_min() = to_recorded(s.bounds.min);
+  *out.mutable_bounds_max() = to_recorded(s.bounds.max);
+  out.set_max_body_size(s.max_body_size);
+  out.set_max_bodies(s.max_bodies);
+  return out;
+}
+
+bool from_recorded(const rec::WorldSettings& in, phys::WorldSettings& s) {
+  switch (in.integrator()) {
+    case rec::INTEGRATOR_EXPLICIT_EULER:
+      s.integrator = phys::Integrator::ExplicitEuler;
+      break;
+    case rec::INTEGRATOR_SEMI_IMPLICIT_EULER:
+      s.integrator = phys::Integrator::SemiImplicitEuler;
+      break;
+    case rec::INTEGRATOR_EXACT:
+      s.integrator = phys::Integrator::Exact;
+      break;
+    default:
+      return false;
+  }
+  s.gravity = from_recorded(in.gravity());
+  s.substeps = in.substeps();
+  s.slop = in.slop();
+  s.position_iterations = in.position_iterations();
+  s.velocity_iterations = in.velocity_iterations();
+  s.warm_starting = in.warm_starting();
+  s.continuous = in.continuous();
+  s.shock_propagation = in.shock_propagation();
+  s.hold_resting_support = in.hold_resting_support();
+  s.rest_speed = in.rest_speed();
+  s.max_speed = in.max_speed();
+  s.max_acceleration = in.max_acceleration();
+  s.sleeping = in.sleeping();
+  s.sleep_speed = in.sleep_speed();
+  s.sleep_time = in.sleep_time();
+  s.has_bounds = in.has_bounds();
+  s.bounds.min = from_recorded(in.bounds_min());
+  s.bounds.max = from_recorded(in.bounds_max());
+  s.max_body_size = in.max_body_size();
+  s.max_bodies = in.max_bodies();
+  s.profile = false;
+  return true;
+}
+
+}  // namespace
+
+physics::recording::Scene to_recorded(const scene::SceneDef& scene) {
+  rec::Scene out;
+  out.set_name(scene.name);
+  *out.mutable_world() = to_recorded(scene.world);
+  out.set_tick_rate(scene.tick_rate);
+  out.set_max_acceleration(scene.max_acceleration);
+  out.mutable_bodies()->Reserve(static_cast<int>(scene.bodies.size()));
+  for (const phys::BodyDef& body : scene.bodies) *out.add_bodies() = to_recorded(body);
+  for (const phys::Vec2& point : scene.spawn_points) *out.add_spawn_points() = to_recorded(point);
+  *out.mutable_player() = to_recorded(scene.player);
+  return out;
+}
+
+std::variant<scene::SceneDef, std::string> from_recorded(const physics::recording::Scene& in) {
+  scene::SceneDef out;
+  out.name = in.name();
+  if (!in.has_world()) return std::string("scene: no world settings");
+  if (!from_recorded(in.world(), out.world)) return std::string("scene.world: unknown integrator");
+  if (const phys::SettingsError error = phys::check_settings(out.world);
+      error != phys::SettingsError::None) {
+    return std::string("scene.world: ") + phys::describe(error);
+  }
+  out.tick_rate = in.tick_rate();
+  if (!(std::isfinite(out.tick_rate) && out.tick_rate > 0.0)) {
+    return std::string("scene.tick_rate: must be finite and > 0");
+  }
+  out.max_acceleration = in.max_acceleration();
+  if (!(std::isfinite(out.max_acceleration) && out.max_acceleration >= 0.0)) {
+    return std::string("scene.max_acceleration: must be finite and >= 0");
+  }
+  // The count is checked before the bodies are copied (the parsed message already
+  // holds them, bounded by the header's byte limit).
+  const auto body_count = static_cast<std::int64_t>(in.bodies_size());
+  if (body_count > scene::kMaxSceneBodies || body_count > out.world.max_bodies) {
+    return "scene.bodies: " + std::to_string(body_count) + " bodies, over the limit";
+  }
+  out.bodies.resize(static_cast<std::size_t>(body_count));
+  for (int i = 0; i < in.bodies_size(); ++i) {
+    if (!from_recorded(in.bodies(i), out.bodies[static_cast<std::size_t>(i)])) {
+      return "scene.bodies[" + std::to_string(i) + "]: unknown shape";
+    }
+  }
+  if (in.spawn_points_size() == 0) return std::string("scene.spawn_points: empty");
+  if (in.spawn_points_size() > scene::kMaxSceneBodies) {
+    return std::string("scene.spawn_points: over the limit");
+  }
+  for (const rec::Vec2& point : in.spawn_points()) {
+    const phys::Vec2 p = from_recorded(point);
+    if (!phys::is_finite(p)) return std::string("scene.spawn_points: not finite");
+    out.spawn_points.push_back(p);
+  }
+  if (!in.has_player() || !from_recorded(in.player(), out.player)) {
+    return std::string("scene.player: missing or of unknown shape");
+  }
+  return out;
+}
+
+std::uint64_t body_hash(const phys::BodyState& body) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  const auto mix = [&h](std::uint64_t word) {
+    for (int i = 0; i < 8; ++i) {
+      h ^= (word >> (8 * i)) & 0xffu;
+      h *= 0x100000001b3ull;
+    }
+  };
+  const auto mix_double = [&](double v) { mix(std::bit_cast<std::uint64_t>(v)); };
+  mix(body.id.packed());
+  mix(static_cast<std::uint64_t>(body.shape) | (static_cast<std::uint64_t>(body.motion) << 8));
+  mix_double(body.position.x);
+  mix_double(body.position.y);
+  mix_double(body.velocity.x);
+  mix_double(body.velocity.y);
+  mix_double(body.acceleration.x);
+  mix_double(body.acceleration.y);
+  mix_double(body.radius);
+  mix_double(body.half_extents.x);
+  mix_double(body.half_extents.y);
+  return h;
+}
+
+}  // namespace server

@@ -1,0 +1,10 @@
+#pragma once
+// physics::testing, everything at once: servers under test (in-process or a child
+// process), clients, waits with deadlines, and the in-process reference run.
+#include "physics_testing/clients.h"
+#include "physics_testing/endpoint.h"
+#include "physics_testing/in_process_server.h"
+#include "physics_testing/lockstep_check.h"
+#include "physics_testing/outcome.h"
+#include "physics_testing/reference_run.h"
+#include "physics_testing/server_process.h"

@@ -1,0 +1,53 @@
+# Bad flags of physics-server, physics-client and physics-netbench: each exits 2 with
+# a message that says what was wrong, and nothing aborts.
+#   cmake -DSERVER=... -DCLIENT=... -DNETBENCH=... -P cli_flags_test.cmake
+
+function(expect_usage_error what expected_text)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
+                  TIMEOUT 30)
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "${what}: exit ${rc}, expected 2\n${out}${err}")
+  endif()
+  if(NOT "${out}${err}" MATCHES "${expected_text}")
+    message(FATAL_ERROR "${what}: the message does not say '${expected_text}':\n${out}${err}")
+  endif()
+  if("${out}${err}" MATCHES "terminate called|Aborted")
+    message(FATAL_ERROR "${what}: aborted\n${out}${err}")
+  endif()
+endfunction()
+
+expect_usage_error("server --port 99999" "0 to 65535" ${SERVER} --port 99999)
+expect_usage_error("server --tick-rate abc" "Failed parsing abc" ${SERVER} --tick-rate abc)
+expect_usage_error("server --tick-rate -5" "not in range" ${SERVER} --tick-rate -5)
+expect_usage_error("server --lockstep-pace slow" "--lockstep-pace" ${SERVER} --lockstep-pace slow)
+expect_usage_error("server --log-format xml" "--log-format" ${SERVER} --log-format xml)
+expect_usage_error("server --lockstep-players 0" "--lockstep-players" ${SERVER} --lockstep-players 0)
+expect_usage_error("server --metrics-port 70000" "0 to 65535" ${SERVER} --metrics-port 70000)
+expect_usage_error("AGONES_SDK_HTTP_PORT=abc" "AGONES_SDK_HTTP_PORT"
+                   ${CMAKE_COMMAND} -E env AGONES_SDK_HTTP_PORT=abc ${SERVER} --port 0)
+
+expect_usage_error("client --port 99999" "1 to 65535" ${CLIENT} --port 99999)
+expect_usage_error("client --bogus" "bogus" ${CLIENT} --bogus)
+expect_usage_error("client --seat -1" "--seat" ${CLIENT} --seat -1)
+expect_usage_error("client --accel nan,0" "finite" ${CLIENT} --accel nan,0)
+
+expect_usage_error("netbench --tick-rate -5" "not in range" ${NETBENCH} --tick-rate -5)
+expect_usage_error("netbench --tick-rate abc" "Failed parsing abc" ${NETBENCH} --tick-rate abc)
+expect_usage_error("netbench --bots 0" "--bots" ${NETBENCH} --bots 0)
+expect_usage_error("netbench --bots -3" "--bots" ${NETBENCH} --bots -3)
+expect_usage_error("netbench --duration -1" "--duration" ${NETBENCH} --duration -1)
+expect_usage_error("netbench --encodings zip" "--encodings" ${NETBENCH} --encodings zip)
+
+# --help says how --max-clients and the scene's room go together, and names the
+# lockstep lobby flags.
+execute_process(COMMAND ${SERVER} --help RESULT_VARIABLE rc OUTPUT_VARIABLE help)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "server --help: exit ${rc}")
+endif()
+foreach(text "ERROR_NO_SPAWN" "fits 58" "--lockstep-players" "--lockstep-max-timeouts"
+        "--metrics-port" "--log-format")
+  string(FIND "${help}" "${text}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "server --help does not mention '${text}':\n${help}")
+  endif()
+endforeach()
