@@ -5,15 +5,9 @@
 namespace itest {
 
 server::ServerConfig test_config(bool lockstep) {
-  server::ServerConfig config;
-  config.bind = "127.0.0.1";
-  config.port = 0;
-  config.lockstep = lockstep;
-  // Every test connects from 127.0.0.1, many of them with bad Hellos on purpose:
-  // the per-address limits have tests of their own (attack_test.cpp).
-  config.failed_hellos_before_backoff = 1000000;
-  config.connects_per_second = 0.0;
-  return config;
+  // The per-address limits are off, as in every user's test (every client connects
+  // from 127.0.0.1); they have tests of their own (attack_test.cpp).
+  return physics_testing::test_server_config(lockstep);
 }
 
 bool eventually(const std::function<bool()>& done, std::chrono::milliseconds timeout) {
