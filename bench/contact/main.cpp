@@ -20,21 +20,7 @@ phys::World build(const bench::SceneSpec& scene, bool events) {
   phys::WorldSettings settings;
   settings.gravity = scene.gravity;
   phys::World world(settings);
-  for (const bench::BodySpec& spec : scene.bodies) {
-    phys::BodyDef def;
-    def.shape = spec.shape;
-    def.motion = spec.is_static ? phys::Motion::Static : phys::Motion::Dynamic;
-    def.position = spec.position;
-    def.velocity = spec.velocity;
-    def.acceleration = spec.acceleration;
-    def.radius = spec.radius;
-    def.half_extents = spec.half_extents;
-    def.mass = spec.mass;
-    def.restitution = spec.restitution;
-    def.friction = spec.friction;
-    def.contact_friction = spec.contact_friction;
-    world.add_body(def);
-  }
+  for (const bench::BodySpec& spec : scene.bodies) world.add_body(bench::to_body_def(spec));
   world.set_contact_events(events);
   return world;
 }

@@ -6,9 +6,8 @@
 #include "physics/world.h"
 
 namespace bench {
-namespace {
 
-phys::BodyDef to_def(const BodySpec& spec) {
+phys::BodyDef to_body_def(const BodySpec& spec) {
   phys::BodyDef def;
   def.shape = spec.shape;
   def.motion = spec.is_static ? phys::Motion::Static : phys::Motion::Dynamic;
@@ -24,13 +23,15 @@ phys::BodyDef to_def(const BodySpec& spec) {
   return def;
 }
 
+namespace {
+
 class OursEngine final : public Engine {
  public:
   OursEngine(const SceneSpec& scene, const EngineOptions& options)
       : world_(settings_for(scene, options)) {
     for (const BodySpec& spec : scene.bodies) {
       phys::BodyDefError error = phys::BodyDefError::None;
-      const phys::BodyId id = world_.add_body(to_def(spec), &error);
+      const phys::BodyId id = world_.add_body(to_body_def(spec), &error);
       if (!id.is_valid()) {
         throw std::runtime_error("scene " + scene.name +
                                  ": body refused: " + std::string(phys::describe(error)));

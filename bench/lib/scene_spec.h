@@ -44,4 +44,7 @@ struct SceneSpec {
 
 std::size_t dynamic_count(const SceneSpec& scene);
 
+// The core's definition of the body a spec describes (what our engine adds).
+phys::BodyDef to_body_def(const BodySpec& spec);
+
 }  // namespace bench

@@ -154,13 +154,7 @@ std::vector<std::string> ReplayWorld::panel(const client::PlayoutFrame& frame,
       index_at(time_) + 1, recording_.snapshots.size()));
   lines.push_back(fmt::format("clients: at most {} players; {} joined, {} left while recording",
                               welcome.max_players, shapes_.joined(), shapes_.left()));
-  const auto still = static_cast<std::size_t>(
-      std::count_if(frame.bodies.begin(), frame.bodies.end(),
-                    [](const client::PlayoutBody& body) { return body.still; }));
-  std::string bodies = fmt::format("bodies: {} dynamic ({} still), {} static", frame.bodies.size(),
-                                   still, shapes_.static_count());
-  if (followed) bodies += fmt::format("  following {}", *followed);
-  lines.push_back(bodies);
+  lines.push_back(shapes_.bodies_line(frame, followed));
   return lines;
 }
 

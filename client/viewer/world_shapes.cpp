@@ -1,5 +1,9 @@
 #include "world_shapes.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+
 namespace viewer {
 
 void WorldShapes::reset(const std::vector<client::BodyShape>& bodies) {
@@ -43,6 +47,17 @@ std::vector<client::BodyShape> WorldShapes::list() const {
   out.reserve(shapes_.size());
   for (const auto& [id, shape] : shapes_) out.push_back(shape);
   return out;
+}
+
+std::string WorldShapes::bodies_line(const client::PlayoutFrame& frame,
+                                     std::optional<std::uint64_t> followed) const {
+  const auto still = static_cast<std::size_t>(
+      std::count_if(frame.bodies.begin(), frame.bodies.end(),
+                    [](const client::PlayoutBody& body) { return body.still; }));
+  std::string line =
+      fmt::format("bodies: {} dynamic ({} still), {} static", frame.bodies.size(), still, statics_);
+  if (followed) line += fmt::format("  following {}", *followed);
+  return line;
 }
 
 }  // namespace viewer

@@ -3,8 +3,11 @@
 // Welcome, then those added and removed by each snapshot (docs/PROTOCOL.md, 3.2).
 #include <cstdint>
 #include <map>
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "client/playout_buffer.h"
 #include "client/types.h"
 
 namespace viewer {
@@ -22,6 +25,9 @@ class WorldShapes {
   // Dynamic bodies added and removed since reset: players joining and leaving.
   std::uint64_t joined() const { return joined_; }
   std::uint64_t left() const { return left_; }
+  // The panel's line of body counts for `frame`: "bodies: N dynamic (S still), M static".
+  std::string bodies_line(const client::PlayoutFrame& frame,
+                          std::optional<std::uint64_t> followed) const;
 
  private:
   std::map<std::uint64_t, client::BodyShape> shapes_;

@@ -151,7 +151,7 @@ void Session::handle_frames() {
       return;
     }
     message_bucket_.spend(1.0, now);
-    // A handler that throws (bad_alloc, a bug) takes down this session only: every
+    // A message handler that throws (std::bad_alloc, say) takes down this session only: every
     // other session and the tick loop go on.
     try {
       host_.on_message(*this, message);
