@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${BUILD_DIR:-build}"
-netbench="$build/tests/integration/physics-netbench"
+netbench="$build/bench/physics-netbench"
 out=bench/results
 bots="${BOTS:-1,8,32,64}"
 duration="${DURATION:-5}"

@@ -20,7 +20,7 @@ results="$here/results"
 # The runs, in the order they run, and the files each writes into bench/results/.
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench replay-size
-      contact-events soak)
+      contact-events soak core-comparison)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -44,6 +44,7 @@ declare -A writes=(
   [replay-size]="replay-size.csv"
   [contact-events]="contact-events.csv"
   [soak]="soak-moving-1000.csv"
+  [core-comparison]="core-comparison.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')"
 )
@@ -190,6 +191,9 @@ run_contact-events() {  # the step with contact events off and on: a rain, a pil
   [[ -x "$contact" ]] || { echo "run-report: $contact not built (ninja -C $build physics-contact-bench)" >&2; return 1; }
   { "$contact" --scene rain --count 4000 --steps 600 --repeats 5
     "$contact" --scene pile --count 4000 --steps 600 --repeats 5 | tail -n +2; } >"$out/contact-events.csv"
+}
+run_core-comparison() {  # this tree's core against CORE_BASELINE's (default HEAD), in turns
+  OUT="$out/core-comparison.csv" "$here/compare-core.sh" "${CORE_BASELINE:-HEAD}"
 }
 run_soak() {  # 64 churning clients on moving-1000 for 10 minutes, replayed (physics-soak)
   local soak="$build/tests/soak/physics-soak"

@@ -12,15 +12,15 @@
 #include <utility>
 
 #include "physics/world.h"
-#include "scenes.h"
+#include "scenes/scenes.h"
 
 namespace {
 
-phys::World build(const bench::SceneSpec& scene, bool events) {
+phys::World build(const scenes::SceneSpec& scene, bool events) {
   phys::WorldSettings settings;
   settings.gravity = scene.gravity;
   phys::World world(settings);
-  for (const bench::BodySpec& spec : scene.bodies) world.add_body(bench::to_body_def(spec));
+  scenes::add_to_world(world, scene);
   world.set_contact_events(events);
   return world;
 }
@@ -40,7 +40,7 @@ struct Run {
   phys::StageCounters counters;
 };
 
-void run_once(const bench::SceneSpec& scene, bool events, Run& best) {
+void run_once(const scenes::SceneSpec& scene, bool events, Run& best) {
   phys::World world = build(scene, events);
   std::uint64_t produced = 0;
   const double start = cpu_seconds();
@@ -75,8 +75,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
-  bench::SceneSpec scene =
-      scene_name == "rain" ? bench::rain_scene(count, steps, 0, 0) : bench::pile_scene(count);
+  scenes::SceneSpec scene =
+      scene_name == "rain" ? scenes::rain_scene(count, steps, 0, 0) : scenes::pile_scene(count);
   scene.steps = steps;
   Run off;
   Run on;

@@ -4,18 +4,12 @@
 
 namespace bench {
 
-std::size_t dynamic_count(const SceneSpec& scene) {
-  std::size_t count = 0;
-  for (const BodySpec& body : scene.bodies) {
-    if (!body.is_static) ++count;
-  }
-  return count;
-}
-
 std::string_view to_string(EngineKind kind) {
   switch (kind) {
     case EngineKind::Ours:
       return "ours";
+    case EngineKind::Baseline:
+      return "baseline";
     case EngineKind::Box2D:
       return "box2d";
     case EngineKind::Chipmunk:
@@ -25,16 +19,27 @@ std::string_view to_string(EngineKind kind) {
 }
 
 std::optional<EngineKind> engine_from_string(std::string_view name) {
-  for (EngineKind kind : {EngineKind::Ours, EngineKind::Box2D, EngineKind::Chipmunk}) {
+  for (EngineKind kind :
+       {EngineKind::Ours, EngineKind::Baseline, EngineKind::Box2D, EngineKind::Chipmunk}) {
     if (to_string(kind) == name) return kind;
   }
   return std::nullopt;
+}
+
+bool runs_our_settings(EngineKind kind) {
+  return kind == EngineKind::Ours || kind == EngineKind::Baseline;
 }
 
 bool engine_available(EngineKind kind) {
   switch (kind) {
     case EngineKind::Ours:
       return true;
+    case EngineKind::Baseline:
+#ifdef PHYSICS_BENCH_HAVE_BASELINE
+      return true;
+#else
+      return false;
+#endif
     case EngineKind::Box2D:
 #ifdef PHYSICS_BENCH_HAVE_BOX2D
       return true;
@@ -56,6 +61,12 @@ std::unique_ptr<Engine> make_engine(EngineKind kind, const SceneSpec& scene,
   switch (kind) {
     case EngineKind::Ours:
       return make_ours_engine(scene, options);
+    case EngineKind::Baseline:
+#ifdef PHYSICS_BENCH_HAVE_BASELINE
+      return make_baseline_engine(scene, options);
+#else
+      return nullptr;
+#endif
     case EngineKind::Box2D:
 #ifdef PHYSICS_BENCH_HAVE_BOX2D
       return make_box2d_engine(scene, options);

@@ -1,7 +1,9 @@
 #pragma once
 // One interface over the engines that run a SceneSpec: ours and, when installed,
-// Box2D 2.4.1 and Chipmunk 7. Bodies keep the scene's order; only dynamic ones are
-// sampled.
+// Box2D 2.4.1 and Chipmunk 7; and, when built with PHYSICS_BASELINE_CORE, the
+// baseline: another revision's core, run with our settings (baseline_bridge.h). Bodies keep the
+// scene's order; only dynamic ones are sampled.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,7 +16,10 @@
 
 namespace bench {
 
-enum class EngineKind { Ours, Box2D, Chipmunk };
+enum class EngineKind { Ours, Baseline, Box2D, Chipmunk };
+
+// Ours and the baseline: the engines that take our settings (the grid of them).
+bool runs_our_settings(EngineKind kind);
 
 std::string_view to_string(EngineKind kind);
 std::optional<EngineKind> engine_from_string(std::string_view name);
@@ -36,14 +41,19 @@ class Engine {
   virtual std::size_t awake_count() const = 0;
   // The solver iterations as the engine names them ("4", "8v/3p").
   virtual std::string iterations_label() const = 0;
-  // Only ours has these; peers return nullptr.
+  // Only ours and the baseline have these; peers return nullptr.
   virtual const phys::StepProfile* last_profile() const { return nullptr; }
   virtual const phys::StageCounters* counters() const { return nullptr; }
+  // The world's state hash (phys::World::state_hash): equal for two cores that step
+  // bit for bit alike. Peers have none.
+  virtual std::optional<std::uint64_t> state_hash() const { return std::nullopt; }
 };
 
 struct EngineOptions {
-  phys::WorldSettings ours;  // ours: every setting; gravity comes from the scene
-  bool sleeping = true;      // all engines
+  // Ours: every setting; the baseline: the integrator, substeps, iterations and
+  // profile. Gravity comes from the scene.
+  phys::WorldSettings ours;
+  bool sleeping = true;  // all engines
 };
 
 // nullptr when the engine is not built in.

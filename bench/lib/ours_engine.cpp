@@ -7,22 +7,6 @@
 
 namespace bench {
 
-phys::BodyDef to_body_def(const BodySpec& spec) {
-  phys::BodyDef def;
-  def.shape = spec.shape;
-  def.motion = spec.is_static ? phys::Motion::Static : phys::Motion::Dynamic;
-  def.position = spec.position;
-  def.velocity = spec.velocity;
-  def.acceleration = spec.acceleration;
-  def.radius = spec.radius;
-  def.half_extents = spec.half_extents;
-  def.mass = spec.mass;
-  def.restitution = spec.restitution;
-  def.friction = spec.friction;
-  def.contact_friction = spec.contact_friction;
-  return def;
-}
-
 namespace {
 
 class OursEngine final : public Engine {
@@ -61,6 +45,7 @@ class OursEngine final : public Engine {
 
   const phys::StepProfile* last_profile() const override { return &world_.last_profile(); }
   const phys::StageCounters* counters() const override { return &world_.counters(); }
+  std::optional<std::uint64_t> state_hash() const override { return world_.state_hash(); }
 
  private:
   static phys::WorldSettings settings_for(const SceneSpec& scene, const EngineOptions& options) {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "physics/broadphase.h"
-#include "scenes.h"
+#include "scenes/scenes.h"
 
 namespace {
 
@@ -13,7 +13,7 @@ constexpr double kDensity = 0.3;
 
 void BM_GridFindPairs(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
-  const std::vector<phys::Aabb> boxes = bench::random_boxes(count, kDensity, 0x5EED0020ULL);
+  const std::vector<phys::Aabb> boxes = scenes::random_boxes(count, kDensity, 0x5EED0020ULL);
   phys::UniformGrid grid;
   std::vector<phys::BodyPair> pairs;
   for (auto _ : state) {
@@ -32,7 +32,7 @@ BENCHMARK(BM_GridFindPairs)
 
 void BM_BruteForceFindPairs(benchmark::State& state) {
   const int count = static_cast<int>(state.range(0));
-  const std::vector<phys::Aabb> boxes = bench::random_boxes(count, kDensity, 0x5EED0020ULL);
+  const std::vector<phys::Aabb> boxes = scenes::random_boxes(count, kDensity, 0x5EED0020ULL);
   std::vector<phys::BodyPair> pairs;
   for (auto _ : state) {
     phys::find_pairs_brute_force(boxes, pairs);

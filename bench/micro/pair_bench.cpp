@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "physics/formulas.h"
-#include "scenes.h"
+#include "scenes/scenes.h"
 
 namespace {
 
@@ -21,7 +21,7 @@ struct Inputs {
 const Inputs& inputs() {
   static const Inputs data = [] {
     Inputs in;
-    bench::SplitMix64 random(0x5EED0010ULL);
+    scenes::SplitMix64 random(0x5EED0010ULL);
     for (std::size_t i = 0; i < kPairs; ++i) {
       const phys::Vec2 a{random.uniform(0.0, 2.0), random.uniform(0.0, 2.0)};
       const phys::Vec2 b{random.uniform(0.0, 2.0), random.uniform(0.0, 2.0)};

@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "engine.h"
-#include "scenes.h"
+#include "scenes/scenes.h"
 
 namespace {
 
@@ -15,7 +15,7 @@ constexpr double kDt = 1.0 / 60.0;
 std::unique_ptr<bench::Engine> make_pile(int count, bool sleeping, int presteps) {
   bench::EngineOptions options;
   options.sleeping = sleeping;
-  auto engine = bench::make_engine(bench::EngineKind::Ours, bench::pile_scene(count), options);
+  auto engine = bench::make_engine(bench::EngineKind::Ours, scenes::pile_scene(count), options);
   for (int i = 0; i < presteps; ++i) engine->step(kDt);
   return engine;
 }

@@ -4,13 +4,14 @@
 //
 // Circles of radius 0.5 are rained into a container `width` metres wide, in rows
 // 1.2 m apart from 1 m up, each with a random jitter of up to 0.1 m and a random
-// sideways speed of up to 1 m/s (the generator and layout of the tests'
-// rained piles, tests/stability/resting_test.cpp). With --per-row N the rows hold
-// N circles, centred, laid out as the 16,000-circle pile (tests/stability/pile_test.cpp:
-// --width 100 --circles 16000 --per-row 80 is that pile, circle for circle). Prints
-// the kinetic energy, the awake count and the worst overlap every 5 s, then the time
-// from which every circle stayed asleep (or "never"), and the pairs overlapping by
-// more than 5 mm and 1 cm at the end, with how many of them are side by side.
+// sideways speed of up to 1 m/s: the scene library's rained_circles_scene, which the
+// tests' rained piles use (tests/stability/resting_test.cpp). With --per-row N the
+// rows hold N circles, centred, laid out as the 16,000-circle pile
+// (tests/stability/pile_test.cpp: --width 100 --circles 16000 --per-row 80 is that
+// pile, circle for circle). Prints the kinetic energy, the awake count and the worst
+// overlap every 5 s, then the time from which every circle stayed asleep (or
+// "never"), and the pairs overlapping by more than 5 mm and 1 cm at the end, with how
+// many of them are side by side.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -19,16 +20,13 @@
 
 #include "finite_range.h"
 #include "physics/world.h"
-#include "rain.h"
+#include "scenes/scenes.h"
 
 namespace {
 
-using phys::BodyDef;
 using phys::BodyState;
 using phys::Motion;
-using phys::Shape;
 using phys::Vec2;
-using phys::testing::Rain;
 
 struct Options {
   double width = 20.0;
@@ -37,36 +35,6 @@ struct Options {
   int seconds = 40;
   int per_row = 0;  // 0: as many as fit, from the left wall
 };
-
-void build(phys::World& world, const Options& o) {
-  const double half = o.width / 2.0;
-  const auto fixed = [&](Vec2 centre, Vec2 half_extents) {
-    BodyDef def;
-    def.motion = Motion::Static;
-    def.position = centre;
-    def.half_extents = half_extents;
-    def.contact_friction = o.mu;
-    world.add_body(def);
-  };
-  fixed({0.0, -0.5}, {half + 1.0, 0.5});
-  fixed({-half - 0.5, 250.0}, {0.5, 250.0});
-  fixed({half + 0.5, 250.0}, {0.5, 250.0});
-  const int per_row = o.per_row > 0 ? o.per_row : std::max(1, static_cast<int>(o.width / 1.2));
-  // The tests' two layouts, each with its own jitter expression (the same draws,
-  // rounded differently).
-  const double first_x = o.per_row > 0 ? 0.6 - 0.6 * per_row : -half + 0.6;
-  Rain rain;
-  for (int n = 0; n < o.circles; ++n) {
-    BodyDef def;
-    def.shape = Shape::Circle;
-    def.radius = 0.5;
-    const double jitter = o.per_row > 0 ? rain.uniform(-0.1, 0.1) : 0.1 * rain.uniform(-1.0, 1.0);
-    def.position = {first_x + 1.2 * (n % per_row) + jitter, 1.0 + 1.2 * (n / per_row)};
-    def.velocity = {rain.uniform(-1.0, 1.0), 0.0};
-    def.contact_friction = o.mu;
-    world.add_body(def);
-  }
-}
 
 struct Overlaps {
   double worst = 0.0;  // of two circles, or of a circle and the container
@@ -129,7 +97,7 @@ int main(int argc, char** argv) {
   }
 
   phys::World world;
-  build(world, o);
+  scenes::add_to_world(world, scenes::rained_circles_scene({o.width, o.circles, o.mu, o.per_row}));
   constexpr double kDt = 1.0 / 60.0;
   int asleep_from = -1;  // the step from which every circle stayed asleep
   for (int step = 1; step <= o.seconds * 60; ++step) {

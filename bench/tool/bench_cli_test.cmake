@@ -32,6 +32,35 @@ expect_refused("not in range" --velocity-iterations 0)
 expect_refused("not in range" --velocity-iterations 65)
 expect_refused("not in range" --timeline-window 0)
 
+# The baseline engine (another revision's core, PHYSICS_BASELINE_CORE): it runs with
+# our settings, gets a row of its own and a ratio against ours, and reports its state
+# hash as ours does. A build without it says how to get it and runs the rest.
+set(ratios_file ${CMAKE_CURRENT_BINARY_DIR}/bench_cli_ratios.csv)
+execute_process(COMMAND ${BENCH} --scenes projectile --engines ours,baseline --integrators exact
+                        --substeps 1 --iterations 4 --ratios ${ratios_file}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "physics-bench --engines ours,baseline failed (${rc}): ${err}")
+endif()
+if(HAVE_BASELINE)
+  file(READ ${ratios_file} ratios)
+  foreach(engine ours baseline)
+    if(NOT out MATCHES "\nprojectile,${engine},exact,1,[^\n]*state_hash=[0-9a-f]+\n")
+      message(FATAL_ERROR "no ${engine} row with a state hash:\n${out}")
+    endif()
+  endforeach()
+  if(NOT ratios MATCHES "\nprojectile,on,cpu_mean,[^,]*,baseline,")
+    message(FATAL_ERROR "no baseline/ours ratio:\n${ratios}")
+  endif()
+else()
+  if(NOT err MATCHES "baseline is not built in \\(configure with -DPHYSICS_BASELINE_CORE=DIR\\)")
+    message(FATAL_ERROR "physics-bench should say how to build the baseline:\n${err}")
+  endif()
+  if(NOT out MATCHES "\nprojectile,ours,exact,1,[^\n]*state_hash=[0-9a-f]+\n")
+    message(FATAL_ERROR "no row of ours with a state hash:\n${out}")
+  endif()
+endif()
+
 # The timeline: one row per window of each run, the last window taking what is left
 # (the projectile scenes run 120 steps at 60 Hz: windows of 50, 50 and 20 steps;
 # "projectile" picks projectile and projectile-friction, so 4 runs).
@@ -101,7 +130,7 @@ foreach(mode one_after_another taking_turns)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "physics-bench ${extra} failed (${rc}): ${err}")
   endif()
-  # Each row without its times: columns 9-15 and 24-28 (ms_*, cpu_ms_*, prof_*).
+  # Each row without its times: columns 9-15 and 24-30 (ms_*, cpu_ms_*, prof_*).
   # (The notes' ';' would split a CMake list: made '|' first.)
   string(REPLACE ";" "|" out "${out}")
   string(REPLACE "\n" ";" rows "${out}")
@@ -109,10 +138,10 @@ foreach(mode one_after_another taking_turns)
   foreach(row IN LISTS rows)
     string(REPLACE "," ";" fields "${row}")
     list(LENGTH fields count)
-    if(count LESS 30)
+    if(count LESS 32)
       continue()
     endif()
-    list(GET fields 0 1 2 3 4 5 6 7 8 16 17 18 19 20 21 22 23 29 untimed)
+    list(GET fields 0 1 2 3 4 5 6 7 8 16 17 18 19 20 21 22 23 31 untimed)
     list(JOIN untimed "," untimed)
     list(APPEND kept_${mode} "${untimed}")
   endforeach()

@@ -62,7 +62,10 @@ int main(int argc, char** argv) {
   app.add_option("--scenes", scene_names,
                  "Scenes, or prefixes of them (rain, stages, friction-dtk), or all")
       ->delimiter(',');
-  app.add_option("--engines", engine_names, "Engines: ours, box2d, chipmunk")->delimiter(',');
+  app.add_option("--engines", engine_names,
+                 "Engines: ours, box2d, chipmunk, and baseline (another revision's core, in a "
+                 "build configured with -DPHYSICS_BASELINE_CORE=DIR)")
+      ->delimiter(',');
   app.add_option("--integrators", integrator_names,
                  "Our integrators: explicit-euler, semi-implicit-euler, exact")
       ->delimiter(',');
@@ -120,12 +123,16 @@ int main(int argc, char** argv) {
   for (const std::string& name : engine_names) {
     const auto kind = bench::engine_from_string(name);
     if (!kind) {
-      std::cerr << "physics-bench: unknown engine '" << name << "' (ours, box2d, chipmunk)\n";
+      std::cerr << "physics-bench: unknown engine '" << name
+                << "' (ours, baseline, box2d, chipmunk)\n";
       return 2;
     }
     if (!bench::engine_available(*kind)) {
-      std::cerr << "physics-bench: " << name
-                << " is not built in (not found at configure time); skipped\n";
+      std::cerr << "physics-bench: " << name << " is not built in ("
+                << (*kind == bench::EngineKind::Baseline
+                        ? "configure with -DPHYSICS_BASELINE_CORE=DIR"
+                        : "not found at configure time")
+                << "); skipped\n";
       continue;
     }
     grid.engines.push_back(*kind);

@@ -10,7 +10,7 @@
 
 #include "closed_form.h"
 #include "overlap.h"
-#include "scenes.h"
+#include "scenes/scenes.h"
 
 namespace bench {
 namespace {
@@ -128,7 +128,7 @@ class BounceObserver final : public Observer {
 
   Measures finish() override {
     Measures m;
-    const double h0 = kBounceHeight;
+    const double h0 = scenes::kBounceHeight;
     if (e_ >= 1.0) {
       constexpr std::size_t kBounces = 36;
       m.error_name = "apex36_err_rel";

@@ -32,8 +32,9 @@ void write_csv_header(std::ostream& out) {
   out << "scene,engine,integrator,substeps,iterations,sleeping,default,bodies,steps,"
          "ms_median,ms_mean,ms_first,ms_last,cpu_ms_mean,cpu_ms_first,cpu_ms_last,error_name,error,"
          "max_overlap,top_drift,"
-         "energy_drift,escaped,non_finite,awake_end,prof_integrate_ms,prof_broadphase_ms,"
-         "prof_narrowphase_ms,prof_resolve_ms,prof_sleep_ms,notes\n";
+         "energy_drift,escaped,non_finite,awake_end,prof_order_and_integrate_ms,prof_candidates_ms,"
+         "prof_moves_ms,prof_position_passes_ms,prof_contact_events_ms,prof_velocity_solver_ms,"
+         "prof_bounds_and_sleep_ms,notes\n";
 }
 
 void write_csv_row(std::ostream& out, const RunRow& row) {
@@ -48,11 +49,12 @@ void write_csv_row(std::ostream& out, const RunRow& row) {
       << count(m.escaped) << ',' << count(m.non_finite) << ',' << row.awake_end << ',';
   if (row.has_profile) {
     const phys::StepProfile& p = row.profile_mean;
-    out << number(p.integrate * 1e3) << ',' << number(p.broadphase * 1e3) << ','
-        << number(p.narrowphase * 1e3) << ',' << number(p.resolve * 1e3) << ','
-        << number(p.sleep * 1e3) << ',';
+    out << number(p.order_and_integrate * 1e3) << ',' << number(p.candidates * 1e3) << ','
+        << number(p.moves * 1e3) << ',' << number(p.position_passes * 1e3) << ','
+        << number(p.contact_events * 1e3) << ',' << number(p.velocity_solver * 1e3) << ','
+        << number(p.bounds_and_sleep * 1e3) << ',';
   } else {
-    out << ",,,,,";
+    out << ",,,,,,,";
   }
   out << m.notes << '\n';
   out.flush();
@@ -66,6 +68,12 @@ void write_ratios(std::ostream& out, const std::vector<RunRow>& rows) {
     for (const RunRow& peer : rows) {
       if (peer.engine == EngineKind::Ours || peer.scene != ours.scene ||
           peer.sleeping != ours.sleeping) {
+        continue;
+      }
+      // The baseline runs our grid too: its row with the same settings.
+      if (runs_our_settings(peer.engine) &&
+          (peer.integrator != ours.integrator || peer.substeps != ours.substeps ||
+           peer.iterations != ours.iterations)) {
         continue;
       }
       write_ratio(out, ours, peer, "wall_median", ours.ms_median, peer.ms_median);
@@ -94,10 +102,12 @@ void write_summary(std::ostream& out, const RunRow& row) {
   if (row.has_profile) {
     const phys::StepProfile& p = row.profile_mean;
     std::snprintf(text, sizeof text,
-                  "    profile ms/step: integrate %.4f  broadphase %.4f  narrowphase %.4f  "
-                  "resolve %.4f  sleep %.4f  total %.4f",
-                  p.integrate * 1e3, p.broadphase * 1e3, p.narrowphase * 1e3, p.resolve * 1e3,
-                  p.sleep * 1e3, p.total * 1e3);
+                  "    profile ms/step: order+integrate %.4f  candidates %.4f  moves %.4f  "
+                  "position passes %.4f  contact events %.4f  velocity solver %.4f  "
+                  "bounds+sleep %.4f  total %.4f",
+                  p.order_and_integrate * 1e3, p.candidates * 1e3, p.moves * 1e3,
+                  p.position_passes * 1e3, p.contact_events * 1e3, p.velocity_solver * 1e3,
+                  p.bounds_and_sleep * 1e3, p.total * 1e3);
     out << text << '\n';
   }
   out.flush();

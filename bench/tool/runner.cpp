@@ -19,20 +19,24 @@ bool is_default(const OursSetting& setting) {
 }
 
 void add_profile(phys::StepProfile& sum, const phys::StepProfile& step) {
-  sum.integrate += step.integrate;
-  sum.broadphase += step.broadphase;
-  sum.narrowphase += step.narrowphase;
-  sum.resolve += step.resolve;
-  sum.sleep += step.sleep;
+  sum.order_and_integrate += step.order_and_integrate;
+  sum.candidates += step.candidates;
+  sum.moves += step.moves;
+  sum.position_passes += step.position_passes;
+  sum.contact_events += step.contact_events;
+  sum.velocity_solver += step.velocity_solver;
+  sum.bounds_and_sleep += step.bounds_and_sleep;
   sum.total += step.total;
 }
 
 void scale_profile(phys::StepProfile& sum, double factor) {
-  sum.integrate *= factor;
-  sum.broadphase *= factor;
-  sum.narrowphase *= factor;
-  sum.resolve *= factor;
-  sum.sleep *= factor;
+  sum.order_and_integrate *= factor;
+  sum.candidates *= factor;
+  sum.moves *= factor;
+  sum.position_passes *= factor;
+  sum.contact_events *= factor;
+  sum.velocity_solver *= factor;
+  sum.bounds_and_sleep *= factor;
   sum.total *= factor;
 }
 
@@ -40,12 +44,12 @@ void scale_profile(phys::StepProfile& sum, double factor) {
 std::string counter_notes(const phys::StageCounters& c) {
   char text[320];
   std::snprintf(text, sizeof text,
-                "gravity_passes=%llu;friction_passes=%llu;restitution_passes=%llu;"
+                "gravity_passes=%llu;friction_passes=%llu;velocity_solves=%llu;"
                 "box_box_tests=%llu;circle_circle_tests=%llu;circle_box_tests=%llu;"
                 "sleeping_skipped=%llu;swept_hits=%llu",
                 static_cast<unsigned long long>(c.gravity_passes),
                 static_cast<unsigned long long>(c.friction_passes),
-                static_cast<unsigned long long>(c.restitution_passes),
+                static_cast<unsigned long long>(c.velocity_solves),
                 static_cast<unsigned long long>(c.box_box_tests),
                 static_cast<unsigned long long>(c.circle_circle_tests),
                 static_cast<unsigned long long>(c.circle_box_tests),
@@ -83,7 +87,7 @@ RunInProgress::RunInProgress(const SceneEntry& entry, const SceneSpec& scene,
   row_.bodies = scene.bodies.size();
   row_.steps = scene.steps;
   row_.iterations = engine_->iterations_label();
-  if (engine_kind == EngineKind::Ours) {
+  if (runs_our_settings(engine_kind)) {
     row_.integrator = phys::to_string(setting.integrator);
     row_.substeps = setting.substeps;
     row_.default_setting = is_default(setting);
@@ -143,6 +147,12 @@ RunRow RunInProgress::finish() {
   if (const phys::StageCounters* counters = engine_->counters()) {
     if (!row.measures.notes.empty()) row.measures.notes += ';';
     row.measures.notes += counter_notes(*counters);
+  }
+  if (const auto hash = engine_->state_hash()) {
+    char text[40];
+    std::snprintf(text, sizeof text, "state_hash=%016llx", static_cast<unsigned long long>(*hash));
+    if (!row.measures.notes.empty()) row.measures.notes += ';';
+    row.measures.notes += text;
   }
   return row;
 }
@@ -206,7 +216,7 @@ void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const Gri
       std::vector<std::pair<EngineKind, OursSetting>> runs;
       for (EngineKind engine : config.engines) {
         if (!engine_available(engine)) continue;
-        if (engine == EngineKind::Ours) {
+        if (runs_our_settings(engine)) {
           for (const OursSetting& setting : settings) runs.push_back({engine, setting});
         } else if (entry.peers_by_default || config.peers_on_all_scenes) {
           runs.push_back({engine, OursSetting{}});

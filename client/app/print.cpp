@@ -2,50 +2,19 @@
 
 #include <fmt/format.h>
 
+#include "text/json_escape.h"
+
 namespace client_app {
-namespace {
 
-// JSON strings we emit hold names from the server; escape what JSON requires.
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
-}  // namespace
-
+// The scene name comes from the server: escaped, so that any name is one JSON string.
 std::string format_welcome(const client::Welcome& welcome, bool json) {
   if (json) {
     return fmt::format(
         "{{\"welcome\":{{\"client_id\":{},\"body_id\":{},\"tick_rate\":{},\"current_tick\":{},"
-        "\"bodies\":{},\"lockstep\":{},\"max_acceleration\":{},\"scene\":{}}}}}",
+        "\"bodies\":{},\"lockstep\":{},\"max_acceleration\":{},\"scene\":\"{}\"}}}}",
         welcome.client_id, welcome.body_id, welcome.tick_rate, welcome.current_tick,
         welcome.bodies.size(), welcome.lockstep, welcome.max_acceleration,
-        json_string(welcome.scene_name));
+        text::json_escape(welcome.scene_name));
   }
   return fmt::format(
       "connected: client {} controls body {} in scene '{}' ({} bodies, {} Hz{}, tick {})",

@@ -3,6 +3,7 @@
 #include "convert.h"
 #include "recording/recording_file.h"
 #include "wire.pb.h"
+#include "wire/messages.h"
 #include "wire/reconstruction.h"
 
 namespace client {
@@ -28,7 +29,7 @@ std::variant<ClientRecording, std::string> decode(const recording::LoadedRecordi
     const std::uint64_t offset = file.offsets[i];
     if (!record.has_received()) return at(offset, "a record that is not a received message");
     physics::wire::ServerMessage message;
-    if (!message.ParseFromString(record.received().server_message()))
+    if (!wire::parse_server_message(record.received().server_message(), message))
       return at(offset, "a received message that does not parse as a ServerMessage");
     const double arrival = static_cast<double>(record.received().micros()) / 1e6;
     if (message.has_welcome()) {

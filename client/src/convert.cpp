@@ -1,6 +1,9 @@
 #include "convert.h"
 
 #include <algorithm>
+#include <utility>
+
+#include "wire/messages.h"
 
 namespace client::convert {
 namespace {
@@ -146,59 +149,19 @@ Pong from_wire(const pb::Pong& message) {
   return {message.nonce(), message.client_time_ns(), message.server_tick()};
 }
 
-pb::ClientMessage make_hello(std::uint32_t protocol_version, const std::string& name,
-                             const std::string& token, const ViewRequest& view, bool spectate,
-                             std::optional<std::uint32_t> seat) {
-  pb::ClientMessage message;
-  auto* hello = message.mutable_hello();
-  hello->set_protocol_version(protocol_version);
-  hello->set_client_name(name);
-  if (!token.empty()) hello->set_access_token(token);
-  *hello->mutable_view() = to_wire(view);
-  hello->set_spectate(spectate);
-  if (seat) hello->set_seat(*seat);
-  return message;
-}
-
-void set_contacts(pb::Hello& hello, const ContactSubscription& contacts) {
-  auto* subscription = hello.mutable_contacts();
-  subscription->set_all(contacts.all);
-  for (const std::uint64_t id : contacts.body_ids) subscription->add_body_ids(id);
-}
-
-pb::ClientMessage make_ack(std::uint64_t tick) {
-  pb::ClientMessage message;
-  message.mutable_ack()->set_tick(tick);
-  return message;
-}
-
-pb::ClientMessage make_full_state_request() {
-  pb::ClientMessage message;
-  message.mutable_full_state_request();
-  return message;
-}
-
-pb::ClientMessage make_input(std::uint64_t tick, double ax, double ay, std::uint64_t sequence) {
-  pb::ClientMessage message;
-  auto* input = message.mutable_input();
-  input->set_tick(tick);
-  input->set_ax(ax);
-  input->set_ay(ay);
-  input->set_sequence(sequence);
-  return message;
-}
-
-pb::ClientMessage make_ping(std::uint64_t nonce, std::uint64_t client_time_ns) {
-  pb::ClientMessage message;
-  message.mutable_ping()->set_nonce(nonce);
-  message.mutable_ping()->set_client_time_ns(client_time_ns);
-  return message;
-}
-
-pb::ClientMessage make_bye(const std::string& reason) {
-  pb::ClientMessage message;
-  message.mutable_bye()->set_reason(reason);
-  return message;
+pb::ClientMessage make_hello(const ClientConfig& config) {
+  wire::HelloOptions options;
+  options.access_token = config.token;
+  options.protocol_version = config.protocol_version;
+  options.view = to_wire(config.view);
+  options.spectate = config.spectate;
+  options.seat = config.seat;
+  if (config.contacts) {
+    pb::ContactSubscription& contacts = options.contacts.emplace();
+    contacts.set_all(config.contacts->all);
+    for (const std::uint64_t id : config.contacts->body_ids) contacts.add_body_ids(id);
+  }
+  return wire::make_hello(config.name, std::move(options));
 }
 
 }  // namespace client::convert

@@ -8,6 +8,10 @@
 
 namespace client {
 
+Vec2 BodyShape::box_half_size() const {
+  return shape == ShapeType::Box ? half_extents : Vec2{radius, radius};
+}
+
 const BodyState* Snapshot::find(std::uint64_t body_id) const {
   // Bodies arrive in ascending id (docs/PROTOCOL.md), so a binary search finds one.
   const auto it =

@@ -31,13 +31,12 @@ Camera fit(const std::vector<client::BodyShape>& bodies, int width, int height) 
   double max_x = -min_x;
   double max_y = -min_x;
   for (const client::BodyShape& body : bodies) {
-    const double hx = body.shape == client::ShapeType::Box ? body.half_extents.x : body.radius;
-    const double hy = body.shape == client::ShapeType::Box ? body.half_extents.y : body.radius;
+    const client::Vec2 h = body.box_half_size();
     if (!std::isfinite(body.position.x) || !std::isfinite(body.position.y)) continue;
-    min_x = std::min(min_x, body.position.x - hx);
-    max_x = std::max(max_x, body.position.x + hx);
-    min_y = std::min(min_y, body.position.y - hy);
-    max_y = std::max(max_y, body.position.y + hy);
+    min_x = std::min(min_x, body.position.x - h.x);
+    max_x = std::max(max_x, body.position.x + h.x);
+    min_y = std::min(min_y, body.position.y - h.y);
+    max_y = std::max(max_y, body.position.y + h.y);
   }
   if (!(max_x > min_x) || !(max_y > min_y)) return camera;
   camera.center = {(min_x + max_x) / 2.0, (min_y + max_y) / 2.0};

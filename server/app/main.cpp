@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   app.add_option("--tick-rate", tick_rate,
                  "Ticks per second; default: the scene's tick rate (60 in the built-in scene)")
       ->check(CLI::Number)
-      ->check(CLI::Range(0.001, 10000.0));
+      ->check(CLI::Range(scene::kMinTickRate, scene::kMaxTickRate));
   app.add_flag("--lockstep", config.lockstep,
                "Lockstep: step tick N only when every client sent its input for N "
                "(or --lockstep-timeout-ms passed); ticks do not advance on their own");

@@ -17,6 +17,7 @@
 #include "print_replay.h"
 #include "scene/scene.h"
 #include "sim_runner.h"
+#include "text/json_escape.h"
 
 namespace {
 
@@ -54,8 +55,9 @@ void print_summary(const std::string& scene_name, const sim::RunSummary& summary
     fmt::print(
         "{{\"scene\":\"{}\",\"steps\":{},\"dt\":{},\"bodies\":{},\"dynamic_bodies\":{},"
         "\"awake_bodies\":{},\"total_s\":{},\"per_step_s\":{},\"state_hash\":\"{}\"}}\n",
-        scene_name, summary.steps, summary.dt, summary.bodies, summary.dynamic_bodies,
-        summary.awake_bodies, summary.total_seconds, per_step, hex(summary.state_hash));
+        text::json_escape(scene_name), summary.steps, summary.dt, summary.bodies,
+        summary.dynamic_bodies, summary.awake_bodies, summary.total_seconds, per_step,
+        hex(summary.state_hash));
     return;
   }
   fmt::print("scene          {}\n", scene_name);
@@ -65,13 +67,6 @@ void print_summary(const std::string& scene_name, const sim::RunSummary& summary
   fmt::print("total time     {:.6f} s\n", summary.total_seconds);
   fmt::print("time per step  {:.3f} us\n", per_step * 1e6);
   fmt::print("state hash     {}\n", hex(summary.state_hash));
-}
-
-// Scene names go into JSON; keep them printable without an escaping library.
-std::string printable(const std::string& name) {
-  std::string out;
-  for (const char c : name) out += (c == '"' || c == '\\' || c < 0x20) ? '_' : c;
-  return out;
 }
 
 }  // namespace
@@ -130,7 +125,7 @@ int main(int argc, char** argv) {
         sim::run_scene(scene, options, [&](const sim::Progress& progress) {
           print_progress(progress, options.steps, flags.json);
         });
-    print_summary(printable(scene.name), summary, flags.json);
+    print_summary(scene.name, summary, flags.json);
   } catch (const std::invalid_argument& e) {
     fmt::print(stderr, "{}\n", e.what());
     return kExitBadInput;

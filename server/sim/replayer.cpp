@@ -1,10 +1,11 @@
 #include "replayer.h"
 
-#include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
+#include "scene/scene.h"
 #include "server/recorded_scene.h"
 
 namespace replay {
@@ -51,8 +52,9 @@ Replayer::Opened Replayer::from_reader(std::unique_ptr<recording::RecordingReade
     return refuse("hash_every " + std::to_string(run.hash_every()) + " is not in [1, " +
                   std::to_string(kMaxHashEvery) + "]");
   }
-  if (!(std::isfinite(run.tick_rate()) && run.tick_rate() > 0.0)) {
-    return refuse("tick_rate must be finite and > 0");
+  // Checked here, not only by Simulation, which would take 0 for the scene's rate.
+  if (std::string problem = scene::tick_rate_problem(run.tick_rate()); !problem.empty()) {
+    return refuse(problem);
   }
   std::variant<scene::SceneDef, std::string> scene = server::from_recorded(run.scene());
   if (auto* message = std::get_if<std::string>(&scene)) return refuse(*message);

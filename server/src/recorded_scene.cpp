@@ -158,8 +158,8 @@ std::variant<scene::SceneDef, std::string> from_recorded(const physics::recordin
     return std::string("scene.world: ") + phys::describe(error);
   }
   out.tick_rate = in.tick_rate();
-  if (!(std::isfinite(out.tick_rate) && out.tick_rate > 0.0)) {
-    return std::string("scene.tick_rate: must be finite and > 0");
+  if (std::string problem = scene::tick_rate_problem(out.tick_rate); !problem.empty()) {
+    return "scene.tick_rate: " + problem;
   }
   out.max_acceleration = in.max_acceleration();
   if (!(std::isfinite(out.max_acceleration) && out.max_acceleration >= 0.0)) {

@@ -2,7 +2,9 @@
 // The server's insides: the acceptor, the sessions, the tick loop (fixed-timestep
 // timer, or the lockstep gate) and the statistics, all on one io_context thread.
 // Only stop() and stats() are called from other threads: stop() posts to the
-// io_context, stats() reads a copy under a mutex.
+// io_context, stats() reads a copy under a mutex. Who may join, and how, is the
+// Handshake's to decide (handshake.h); the members are defined in server*.cpp,
+// one file per job (server.cpp lists them).
 #include <asio.hpp>
 #include <chrono>
 #include <cstdint>
@@ -14,11 +16,11 @@
 
 #include "address_limits.h"
 #include "agones_sdk.h"
+#include "handshake.h"
 #include "log_limiter.h"
 #include "metrics_http.h"
 #include "physics/clock.h"
 #include "physics/fixed_timestep.h"
-#include "seats.h"
 #include "server/lockstep_gate.h"
 #include "server/server.h"
 #include "server/simulation.h"
@@ -66,6 +68,7 @@ class Server::Impl final : public SessionHost {
   // The lockstep lobby (config.lockstep_players): bodies in seat order, then Welcomes.
   void open_lobby();
   void welcome_player(Session& session, phys::BodyId body, const wire::ViewSettings& view);
+  void welcome_spectator(Session& session, const wire::ViewSettings& view);
   void drop_stragglers(const TickResult& result, bool timed_out);
   void log_stats_line();
   TickResult run_one_tick();
@@ -76,7 +79,6 @@ class Server::Impl final : public SessionHost {
   void on_hello(Session& session, const physics::wire::Hello& hello);
   void on_input(Session& session, const physics::wire::Input& input);
   void on_ack(Session& session, const physics::wire::Ack& ack);
-  void join_spectator(Session& session, const std::string& name, const wire::ViewSettings& view);
   void on_full_state_request(Session& session);
 
   template <typename Update>
@@ -107,22 +109,15 @@ class Server::Impl final : public SessionHost {
   TruthFrame previous_frame_;
 
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
-  std::size_t joined_count_ = 0;  // players
-  std::size_t spectator_count_ = 0;
-  std::set<std::uint32_t> spectators_;  // session ids
-  std::uint32_t next_client_id_ = 1;    // see client_ids.h
+  std::uint32_t next_client_id_ = 1;  // see client_ids.h
   AddressLimits address_limits_;
   LogLimiter log_limiter_;
   bool stopping_ = false;
   bool lockstep_check_posted_ = false;
 
-  // Seats, the lockstep lobby and its stragglers (seats.h, stragglers.h).
-  struct LobbySeat {
-    wire::ViewSettings view;
-  };
-  SeatTable seats_;
-  std::map<std::uint32_t, LobbySeat> lobby_;  // seated players not yet welcomed
-  bool lobby_open_ = true;                    // false until the lobby's seats are all taken
+  // Players (their bodies are the simulation's room), seats, the lockstep lobby and
+  // spectators; the lockstep stragglers (stragglers.h).
+  Handshake handshake_;
   StragglerWatch stragglers_;
   std::set<std::uint32_t> told_clamped_;  // players already told of a clamped input
   std::chrono::steady_clock::time_point next_lockstep_due_{};  // Pace::Realtime

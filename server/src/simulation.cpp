@@ -1,18 +1,18 @@
 #include "server/simulation.h"
 
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace server {
 namespace {
 
 double pick_tick_rate(double requested, const scene::SceneDef& scene) {
-  // 0 means "the scene's"; anything else must itself be a valid rate. The lower
-  // bound is physics-server's --tick-rate range: a rate near zero (a denormal from a
-  // corrupted recording) would make dt = 1 / rate infinite.
+  // 0 means "the scene's"; anything else must itself be a valid rate. A rate near
+  // zero (a denormal from a corrupted recording) would make dt = 1 / rate infinite.
   const double rate = requested == 0.0 ? scene.tick_rate : requested;
-  if (!(rate >= 0.001 && rate <= 10000.0)) {
-    throw std::invalid_argument("tick rate must be in [0.001, 10000] ticks per second");
+  if (std::string problem = scene::tick_rate_problem(rate); !problem.empty()) {
+    throw std::invalid_argument(problem);
   }
   return rate;
 }

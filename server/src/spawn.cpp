@@ -4,18 +4,18 @@
 #include <array>
 #include <vector>
 
+#include "physics/formulas.h"
+
 namespace server {
 namespace {
 
+// The half size of the box a body occupies, as the core sizes it: a circle's is
+// (radius, radius).
 phys::Vec2 half_size(phys::Shape shape, double radius, phys::Vec2 half_extents) {
   return shape == phys::Shape::Circle ? phys::Vec2{radius, radius} : half_extents;
 }
 
-bool overlaps(const phys::Aabb& a, const phys::Aabb& b) {
-  // Touching counts as overlapping: a body spawned flush against another would be
-  // in contact from its first step.
-  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y;
-}
+phys::Aabb box_around(phys::Vec2 center, phys::Vec2 half) { return {center - half, center + half}; }
 
 bool inside(const phys::Aabb& inner, const phys::Aabb& outer) {
   return inner.min.x >= outer.min.x && inner.max.x <= outer.max.x && inner.min.y >= outer.min.y &&
@@ -33,29 +33,26 @@ std::array<phys::Vec2, 8> ring_offsets(int ring, phys::Vec2 step) {
 
 }  // namespace
 
-phys::Aabb bounds_of(const phys::BodyState& body) {
-  const phys::Vec2 h = half_size(body.shape, body.radius, body.half_extents);
-  return {body.position - h, body.position + h};
-}
-
-phys::Aabb bounds_of(const phys::BodyDef& body, phys::Vec2 at) {
-  const phys::Vec2 h = half_size(body.shape, body.radius, body.half_extents);
-  return {at - h, at + h};
-}
-
 std::optional<phys::Vec2> find_spawn_position(const scene::SceneDef& scene,
                                               const phys::World& world,
                                               std::optional<std::uint32_t> seat) {
   std::vector<phys::Aabb> occupied;
   occupied.reserve(world.body_count());
-  world.for_each_body([&](const phys::BodyState& body) { occupied.push_back(bounds_of(body)); });
+  world.for_each_body([&](const phys::BodyState& body) {
+    occupied.push_back(
+        box_around(body.position, half_size(body.shape, body.radius, body.half_extents)));
+  });
 
   const phys::WorldSettings& settings = world.settings();
+  const phys::Vec2 h =
+      half_size(scene.player.shape, scene.player.radius, scene.player.half_extents);
+  // Touching counts as overlapping (as in the core's boxes_intersect): a body spawned
+  // flush against another would be in contact from its first step.
   auto is_free = [&](phys::Vec2 at) {
-    const phys::Aabb box = bounds_of(scene.player, at);
+    const phys::Aabb box = box_around(at, h);
     if (settings.has_bounds && !inside(box, settings.bounds)) return false;
     return std::none_of(occupied.begin(), occupied.end(),
-                        [&](const phys::Aabb& other) { return overlaps(box, other); });
+                        [&](const phys::Aabb& other) { return phys::boxes_intersect(box, other); });
   };
 
   if (seat && !scene.spawn_points.empty()) {
@@ -65,8 +62,6 @@ std::optional<phys::Vec2> find_spawn_position(const scene::SceneDef& scene,
   for (const phys::Vec2& point : scene.spawn_points) {
     if (is_free(point)) return point;
   }
-  const phys::Vec2 h =
-      half_size(scene.player.shape, scene.player.radius, scene.player.half_extents);
   const phys::Vec2 step{h.x * 2.5, h.y * 2.5};
   for (int ring = 1; ring <= kSpawnRings; ++ring) {
     for (const phys::Vec2& point : scene.spawn_points) {

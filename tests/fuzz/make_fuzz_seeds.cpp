@@ -61,11 +61,7 @@ std::string frame_of(const physics::wire::ClientMessage& message) {
   return wire::encode_frame(message);
 }
 
-std::string ack(std::uint64_t tick) {
-  physics::wire::ClientMessage message;
-  message.mutable_ack()->set_tick(tick);
-  return frame_of(message);
-}
+std::string ack(std::uint64_t tick) { return frame_of(wire::make_ack(tick)); }
 
 void server_seeds(const fs::path& dir) {
   // Fixed rate: a player sends inputs and acks over ticks, pings, asks for a full
@@ -78,15 +74,10 @@ void server_seeds(const fs::path& dir) {
       add_record(seed, 0, 1, false,
                  frame_of(wire::make_input(tick + 1, 3.0, -2.0, tick)) + ack(tick));
     }
-    physics::wire::ClientMessage ping;
-    ping.mutable_ping()->set_nonce(7);
-    physics::wire::ClientMessage full;
-    full.mutable_full_state_request();
-    add_record(seed, 0, 2, false, frame_of(ping) + frame_of(full) + frame_of(full));
+    const std::string full = frame_of(wire::make_full_state_request());
+    add_record(seed, 0, 2, false, frame_of(wire::make_ping(7)) + full + full);
     add_record(seed, 1, 0, false, frame_of(wire::make_input(9, 1.0, 1.0)));
-    physics::wire::ClientMessage bye;
-    bye.mutable_bye()->set_reason("done");
-    add_record(seed, 0, 1, false, frame_of(bye));
+    add_record(seed, 0, 1, false, frame_of(wire::make_bye("done")));
     write_file(dir / "fixed_rate_player", seed);
   }
   // Lockstep, two players and a spectator with an area of interest; one player

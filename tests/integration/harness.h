@@ -34,6 +34,8 @@ class RunningServer {
   std::uint16_t port() const { return server_.port(); }
   server::ServerStats stats() const { return server_.stats(); }
   server::Server& get() { return server_.server(); }
+  // Stops the server and joins its thread: returns once run() has returned.
+  void stop() { server_.stop(); }
   // A client config pointing at this server.
   client::ClientConfig client_config(const std::string& name = "test-client") const {
     return server_.client_config(name);

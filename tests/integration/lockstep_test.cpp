@@ -1,6 +1,7 @@
 // Lockstep equals in-process: clients in lockstep send a scripted sequence of
 // inputs; the state hashes they receive equal, tick by tick, those of the same
-// scene stepped in-process with the same inputs.
+// scene stepped in-process with the same inputs, by a plain phys::World and by the
+// server's own tick logic (server::Simulation).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "harness.h"
 #include "reference.h"
+#include "server/simulation.h"
 #include "test_scenes.h"
 
 namespace itest {
@@ -33,13 +35,28 @@ void run_lockstep_against_reference(const scene::SceneDef& scene, std::size_t cl
         server.exact_client_config("lockstep-" + std::to_string(k))));
     ASSERT_TRUE(players.back()->connect(3s)) << players.back()->last_error().to_string();
   }
-  // Nobody has sent an input yet, so every client joined at the same tick.
+  // Nobody has sent an input yet, so no tick was stepped and every client joined at
+  // tick 0, each at the next spawn point.
   const std::uint64_t start_tick = players.front()->welcome().current_tick;
+  ASSERT_EQ(start_tick, 0u);
   ReferenceRun reference(scene);
-  reference.advance_to(start_tick);
-  for (const auto& player : players) {
-    ASSERT_EQ(player->welcome().current_tick, start_tick);
-    ASSERT_EQ(reference.add_player(player->welcome()), player->welcome().body_id);
+  // Simulation is the server's own tick logic, so a bug in it would be in both: the
+  // plain world of ReferenceRun is the independent oracle, Simulation the check
+  // that the server steps what its own class steps.
+  server::Simulation simulation(scene);
+  for (std::size_t k = 0; k < players.size(); ++k) {
+    const client::Welcome& welcome = players[k]->welcome();
+    ASSERT_EQ(welcome.current_tick, start_tick);
+    ASSERT_EQ(reference.add_player(welcome), welcome.body_id);
+    const auto body = simulation.join(welcome.client_id);
+    ASSERT_TRUE(body.has_value());
+    ASSERT_EQ(body->packed(), welcome.body_id);
+    for (const client::BodyShape& shape : welcome.bodies) {
+      if (shape.body_id != welcome.body_id) continue;
+      ASSERT_LT(k, scene.spawn_points.size());
+      EXPECT_EQ(shape.position.x, scene.spawn_points[k].x) << "client " << k;
+      EXPECT_EQ(shape.position.y, scene.spawn_points[k].y) << "client " << k;
+    }
   }
 
   for (int i = 1; i <= ticks; ++i) {
@@ -48,8 +65,11 @@ void run_lockstep_against_reference(const scene::SceneDef& scene, std::size_t cl
       const client::Vec2 a = scripted_input(k, tick);
       ASSERT_TRUE(players[k]->send_input(tick, a.x, a.y));
       reference.set_input(players[k]->welcome().body_id, a.x, a.y);
+      simulation.submit_input(players[k]->welcome().client_id, tick, {a.x, a.y});
     }
     const std::uint64_t expected_hash = reference.step();
+    simulation.step_tick();
+    ASSERT_EQ(simulation.world().state_hash(), expected_hash) << "tick " << tick;
     for (std::size_t k = 0; k < players.size(); ++k) {
       auto snapshot = players[k]->next_snapshot(5s);
       ASSERT_TRUE(snapshot.has_value())
@@ -59,6 +79,9 @@ void run_lockstep_against_reference(const scene::SceneDef& scene, std::size_t cl
       EXPECT_EQ(snapshot->last_applied_input_tick, tick);
     }
   }
+  // Stats are published just after the snapshots are queued.
+  const auto last_tick = start_tick + static_cast<std::uint64_t>(ticks);
+  EXPECT_TRUE(eventually([&] { return server.stats().current_tick == last_tick; }));
   const server::ServerStats stats = server.stats();
   EXPECT_EQ(stats.lockstep_timeouts, 0u);
   EXPECT_EQ(stats.reused_inputs, 0u);

@@ -39,11 +39,19 @@ TEST(Session, WelcomeDescribesTheSceneAndTheOwnBody) {
   std::size_t scene_statics = 0;
   for (const auto& def : scene.bodies) scene_statics += def.motion == phys::Motion::Static ? 1 : 0;
   EXPECT_EQ(statics, scene_statics);
-  auto snapshot = player.next_snapshot(3s);
-  ASSERT_TRUE(snapshot.has_value());
-  ASSERT_TRUE(snapshot->own.has_value());
-  EXPECT_GT(snapshot->tick, welcome.current_tick);
-  EXPECT_EQ(snapshot->bodies.size(), welcome.bodies.size() - statics);
+  EXPECT_EQ(welcome.client_id, 1u);  // the first connection accepted
+  // Then snapshots in tick order, each of every dynamic body, our own among them.
+  std::uint64_t previous = welcome.current_tick;
+  for (int i = 0; i < 10; ++i) {
+    auto snapshot = player.next_snapshot(3s);
+    ASSERT_TRUE(snapshot.has_value()) << player.last_error().to_string();
+    ASSERT_TRUE(snapshot->own.has_value());
+    EXPECT_NE(snapshot->find(welcome.body_id), nullptr);
+    EXPECT_GT(snapshot->tick, previous);
+    previous = snapshot->tick;
+    EXPECT_EQ(snapshot->bodies.size(), welcome.bodies.size() - statics);
+  }
+  EXPECT_EQ(server.stats().connected_clients, 1u);
 }
 
 TEST(Session, InputInRealTimeIsAppliedAndMovesTheBodyThatWay) {
@@ -93,12 +101,20 @@ TEST(Session, ByeRemovesTheBody) {
   EXPECT_TRUE(listed_as_removed);
   EXPECT_TRUE(
       eventually([&] { return dropped(server.stats(), server::DropReason::ClientBye) == 1; }));
+  // The server holds nothing of it: only the staying client's connection is open.
+  EXPECT_TRUE(eventually([&] {
+    const auto stats = server.stats();
+    return stats.open_connections == 1 && stats.connected_clients == 1;
+  }));
 }
 
-TEST(Session, ServerShutdownIsReportedToTheClient) {
+// Server::stop() (twice: it is idempotent) sends every client ERROR_SHUTTING_DOWN,
+// closes it, and run() returns.
+TEST(Session, ServerShutdownIsReportedToTheClientAndRunReturns) {
   RunningServer server(test_config(), scene::default_scene());
   client::Client player(server.client_config("shutdown"));
   ASSERT_TRUE(player.connect(3s));
+  server.get().stop();
   server.get().stop();
   auto error = player.next_error(3s);
   ASSERT_TRUE(error.has_value()) << player.last_error().to_string();
@@ -106,6 +122,8 @@ TEST(Session, ServerShutdownIsReportedToTheClient) {
   EXPECT_TRUE(error->fatal);
   EXPECT_EQ(player.state(), client::ConnectionState::ConnectionLost);
   EXPECT_FALSE(player.send_input(1, 0.0, 0.0));
+  server.stop();  // joins the server's thread: run() returned
+  EXPECT_EQ(dropped(server.stats(), server::DropReason::ShuttingDown), 1u);
 }
 
 TEST(ClientStates, ConnectToAClosedPortFails) {

@@ -1,9 +1,9 @@
 // Slow and stopped readers. A client that never reads: the server keeps serving
 // the others, holds at most that client's window of snapshots (it skips ticks
-// instead of queueing them), and finally drops it. It asks for full snapshots of
-// 3,000 bodies (about 120 kB each), which fill the socket buffers in well under a
-// second. A client that reads ten snapshots a second sees state no older than its
-// window of its own reads.
+// instead of queueing them), and drops it as too slow once a write to it has made
+// no progress for idle_timeout. It asks for full snapshots of 3,000 bodies (about
+// 120 kB each), which fill the socket buffers at once. A client that reads ten
+// snapshots a second sees state no older than its window of its own reads.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -15,9 +15,15 @@
 namespace itest {
 namespace {
 
-TEST(SlowClient, NeverReadingClientHoldsItsWindowWhileOthersAreServed) {
+TEST(SlowClient, NeverReadingClientHoldsItsWindowWhileOthersAreServedThenIsDroppedAsTooSlow) {
   server::ServerConfig config = test_config();
-  config.idle_timeout = 3000ms;  // margin for a slow build: the loop below sends every tick
+  // The sleeper talks every tick, so it is never idle: only a write to it that makes
+  // no progress for this long drops it. 4 s lets a slow build (ThreadSanitizer steps
+  // this crowd at about 25 ticks a second) step the 60 ticks below first.
+  config.idle_timeout = 4000ms;
+  // With the OS default (megabytes) the kernel would take the sleeper's whole window
+  // and no write would ever stall; 16 KiB holds less than one of its snapshots.
+  config.socket_send_buffer_bytes = 16384;
   RunningServer server(config, crowd_scene(3000));
 
   client::Client good(server.client_config("good"));
@@ -30,12 +36,10 @@ TEST(SlowClient, NeverReadingClientHoldsItsWindowWhileOthersAreServed) {
   ASSERT_TRUE(sleeper.send(hello));
 
   // The sleeper keeps talking (so it is not idle) but never reads. Meanwhile the
-  // good client must keep getting ticks: 60 of them, however slow the build (under
-  // ThreadSanitizer a tick of this crowd takes far longer than 1/60 s).
+  // good client must keep getting ticks: 60 of them, however slow the build.
   std::uint64_t last_tick = 0;
   std::size_t good_snapshots = 0;
-  const auto deadline = std::chrono::steady_clock::now() + 40s;
-  while (good_snapshots < 60 && std::chrono::steady_clock::now() < deadline) {
+  auto serve_good_once = [&] {
     sleeper.send(input_message(last_tick + 1, 0.0, 0.0));
     good.send_input(last_tick + 1, 0.0, 0.0);  // its inputs make every tick news
     auto snapshot = good.next_snapshot(2s);
@@ -44,6 +48,11 @@ TEST(SlowClient, NeverReadingClientHoldsItsWindowWhileOthersAreServed) {
     EXPECT_GT(snapshot->tick, last_tick);
     last_tick = snapshot->tick;
     ++good_snapshots;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + 40s;
+  while (good_snapshots < 60 && std::chrono::steady_clock::now() < deadline) {
+    serve_good_once();
+    if (HasFatalFailure()) return;
   }
   const server::ServerStats stats = server.stats();
   // Its backlog was bounded: due snapshots were skipped, not queued (every due tick
@@ -53,9 +62,25 @@ TEST(SlowClient, NeverReadingClientHoldsItsWindowWhileOthersAreServed) {
   EXPECT_GE(stats.skipped_snapshots, 20u);
   EXPECT_LE(stats.peak_queued_snapshots, 12u);
   EXPECT_EQ(good.state(), client::ConnectionState::Connected);
-  // Silent from now on: dropped for that.
-  EXPECT_TRUE(
-      eventually([&] { return dropped(server.stats(), server::DropReason::Idle) >= 1; }, 10s));
+
+  // Its writes have stalled since it joined (its Welcome alone is larger than the
+  // buffers): dropped as too slow, never as idle, one timeout after the stall; that
+  // is awaited for 5 timeouts while the good client is served on.
+  const auto drop_deadline = std::chrono::steady_clock::now() + 5 * config.idle_timeout;
+  while (dropped(server.stats(), server::DropReason::TooSlow) == 0 &&
+         std::chrono::steady_clock::now() < drop_deadline) {
+    serve_good_once();
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_EQ(dropped(server.stats(), server::DropReason::TooSlow), 1u);
+  EXPECT_EQ(dropped(server.stats(), server::DropReason::Idle), 0u);
+  EXPECT_LE(server.stats().peak_queued_snapshots, 12u);
+  EXPECT_TRUE(eventually([&] { return server.stats().connected_clients == 1u; }));
+  EXPECT_TRUE(sleeper.wait_closed(3s));
+  const std::uint64_t before = last_tick;
+  serve_good_once();
+  EXPECT_GT(last_tick, before);
+  EXPECT_EQ(good.state(), client::ConnectionState::Connected);
   EXPECT_EQ(check_server_serves(server), "");
 }
 

@@ -3,6 +3,7 @@
 // length it has not checked.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -11,6 +12,7 @@
 
 #include "replay_support.h"
 #include "replayer.h"
+#include "scene/scene.h"
 #include "wire/framing.h"
 
 namespace {
@@ -181,7 +183,8 @@ TEST(BadRecording, HeadersWithoutAUsableRunAreRefusedAtTheHeader) {
 
   physics::recording::Header bad_rate = good;
   bad_rate.mutable_server()->set_tick_rate(std::numeric_limits<double>::quiet_NaN());
-  expect_error(encode(bad_rate), recording::kPreambleBytes + prefix_bytes(bad_rate), "tick_rate");
+  expect_error(encode(bad_rate), recording::kPreambleBytes + prefix_bytes(bad_rate),
+               "tick rate must be in");
 
   physics::recording::Header no_hashes = good;
   no_hashes.mutable_server()->set_hash_every(0);
@@ -207,17 +210,32 @@ TEST(BadRecording, HeadersWithoutAUsableRunAreRefusedAtTheHeader) {
 
 // Found by tests/fuzz/replay_fuzz: a tick rate that is finite and above zero but
 // so small (a denormal) that dt = 1 / rate is infinite reached World::step's assert.
-// Such rates are refused at the header, as physics-server's --tick-rate range does.
+// Such rates are refused at the header, by the range physics-server's --tick-rate
+// has (scene/scene.h); so is a rate just above it, and 0 (which is no rate here).
 TEST(BadRecording, ATickRateWhoseStepIsInfiniteIsRefusedAtTheHeader) {
   const std::string bytes = small_recording();
-  for (const double rate : {9.62876890084745e-310, std::numeric_limits<double>::min(), 1e-4}) {
+  for (const double rate :
+       {9.62876890084745e-310, std::numeric_limits<double>::min(), 1e-4,
+        std::nextafter(scene::kMinTickRate, 0.0), 0.0, std::nextafter(scene::kMaxTickRate, 1e9)}) {
     SCOPED_TRACE(rate);
     physics::recording::Header header = header_of(bytes);
     header.mutable_server()->set_tick_rate(rate);
     std::string prefix;
     wire::append_varint_prefix(header.ByteSizeLong(), prefix);
     expect_error(recording::encode_recording(header, {}), recording::kPreambleBytes + prefix.size(),
-                 "tick rate must be in [0.001, 10000]");
+                 "tick rate must be in [0.001, 1000]");
+  }
+}
+
+TEST(BadRecording, ATickRateAtEitherEndOfTheRangeOpens) {
+  const std::string bytes = small_recording();
+  for (const double rate : {scene::kMinTickRate, scene::kMaxTickRate}) {
+    SCOPED_TRACE(rate);
+    physics::recording::Header header = header_of(bytes);
+    header.mutable_server()->set_tick_rate(rate);
+    auto opened = replay::Replayer::from_bytes(recording::encode_recording(header, {}));
+    ASSERT_TRUE(std::holds_alternative<std::unique_ptr<replay::Replayer>>(opened))
+        << std::get<recording::RecordingError>(opened).to_string();
   }
 }
 

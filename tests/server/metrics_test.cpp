@@ -7,8 +7,6 @@
 #include <sstream>
 #include <string>
 
-#include "server/log_format.h"
-
 namespace {
 
 using namespace std::chrono_literals;
@@ -97,14 +95,6 @@ TEST(Metrics, LockstepIsReadyWithoutTicksUntilShutdown) {
   EXPECT_TRUE(server::readiness(stats, info, std::chrono::steady_clock::now()).ready);
   stats.shutting_down = true;
   EXPECT_FALSE(server::readiness(stats, info, std::chrono::steady_clock::now()).ready);
-}
-
-TEST(LogFormat, JsonEscapingKeepsEveryLineOneValidString) {
-  EXPECT_EQ(server::json_escaped("plain"), "plain");
-  EXPECT_EQ(server::json_escaped("say \"hi\"\\"), "say \\\"hi\\\"\\\\");
-  EXPECT_EQ(server::json_escaped("a\nb\tc"), "a\\nb\\tc");
-  EXPECT_EQ(server::json_escaped(std::string("\x01", 1)), "\\u0001");
-  EXPECT_EQ(server::json_escaped("caf\xc3\xa9"), "caf\xc3\xa9");  // UTF-8 as it is
 }
 
 }  // namespace

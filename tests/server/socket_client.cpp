@@ -4,11 +4,7 @@
 
 namespace server_test {
 
-SocketClient::SocketClient(std::uint16_t port, int receive_buffer_bytes) : socket_(io_) {
-  socket_.open(asio::ip::tcp::v4());
-  if (receive_buffer_bytes > 0) {
-    socket_.set_option(asio::socket_base::receive_buffer_size(receive_buffer_bytes));
-  }
+SocketClient::SocketClient(std::uint16_t port) : socket_(io_) {
   socket_.connect({asio::ip::make_address("127.0.0.1"), port});
 }
 
@@ -71,16 +67,15 @@ bool SocketClient::wait_closed(std::chrono::milliseconds timeout) {
   return true;
 }
 
-std::optional<physics::wire::Welcome> SocketClient::join(const std::string& name,
-                                                         const std::string& token) {
-  send(full_view_hello(name, token));
+std::optional<physics::wire::Welcome> SocketClient::join(const std::string& name) {
+  send(full_view_hello(name));
   const auto reply = receive();
   if (!reply || !reply->has_welcome()) return std::nullopt;
   return reply->welcome();
 }
 
-physics::wire::ClientMessage full_view_hello(const std::string& name, const std::string& token) {
-  physics::wire::ClientMessage hello = wire::make_hello(name, token);
+physics::wire::ClientMessage full_view_hello(const std::string& name) {
+  physics::wire::ClientMessage hello = wire::make_hello(name);
   hello.mutable_hello()->mutable_view()->set_encoding(physics::wire::ENCODING_FULL);
   hello.mutable_hello()->mutable_view()->set_state_hash(true);
   hello.mutable_hello()->mutable_view()->set_window(64);

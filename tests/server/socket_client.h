@@ -14,8 +14,7 @@ namespace server_test {
 
 class SocketClient {
  public:
-  // receive_buffer_bytes > 0 sets SO_RCVBUF before connecting (slow-reader tests).
-  explicit SocketClient(std::uint16_t port, int receive_buffer_bytes = 0);
+  explicit SocketClient(std::uint16_t port);
 
   void send_raw(const std::string& bytes);
   void send(const physics::wire::ClientMessage& message);
@@ -26,9 +25,7 @@ class SocketClient {
   bool wait_closed(std::chrono::milliseconds timeout = std::chrono::milliseconds(5000));
   // Hello (asking for ENCODING_FULL, so that every snapshot lists every dynamic
   // body), then the Welcome (nullopt if something else came).
-  std::optional<physics::wire::Welcome> join(const std::string& name,
-                                             const std::string& token = {});
-  bool closed() const { return closed_; }
+  std::optional<physics::wire::Welcome> join(const std::string& name);
 
  private:
   // One read of whatever is there; false on end of stream, error or timeout.
@@ -43,7 +40,6 @@ class SocketClient {
 
 // A Hello asking for ENCODING_FULL, the world's state hash in every snapshot, and
 // the largest window the server allows by default (64 snapshots).
-physics::wire::ClientMessage full_view_hello(const std::string& name,
-                                             const std::string& token = {});
+physics::wire::ClientMessage full_view_hello(const std::string& name);
 
 }  // namespace server_test

@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "scenes/scenes.h"
 #include "stability_scenes.h"
 
 namespace phys::testing {
 namespace {
 
 constexpr int kCircles = 16'000;
-constexpr int kPerRow = 80;
 constexpr double kInner = 50.0;  // inner faces of the walls at x = +-50
 constexpr double kWallTop = 500.0;
 constexpr int kSettleSteps = 1800;  // 30 s
@@ -33,26 +33,10 @@ constexpr int kWatchSteps = 600;    // 10 s more
 constexpr double kMaxOverlapWithFriction = 0.003;
 constexpr double kMaxOverlapFrictionless = 0.01;
 
-// The container and the circles, all with contact friction `mu`.
+// The container and the circles, all with contact friction `mu` (the scene
+// library's circle pile, which the bench's pile-rain scenes and physics-settle share).
 void build_pile(World& world, double mu) {
-  const auto fixed = [&](Vec2 centre, Vec2 half) {
-    BodyDef def = box_def(centre, half, Motion::Static);
-    def.contact_friction = mu;
-    add_or_fail(world, def);
-  };
-  fixed({0.0, -0.5}, {kInner + 1.0, 0.5});
-  fixed({-kInner - 0.5, kWallTop / 2}, {0.5, kWallTop / 2});
-  fixed({kInner + 0.5, kWallTop / 2}, {0.5, kWallTop / 2});
-  Rain rain;
-  for (int n = 0; n < kCircles; ++n) {
-    const int row = n / kPerRow;
-    const int column = n % kPerRow;
-    const Vec2 centre{-47.4 + 1.2 * column + rain.uniform(-0.1, 0.1), 1.0 + 1.2 * row};
-    BodyDef def = circle_def(centre, 0.5);
-    def.velocity = {rain.uniform(-1.0, 1.0), 0.0};
-    def.contact_friction = mu;
-    add_or_fail(world, def);
-  }
+  scenes::add_to_world(world, scenes::rained_circles_scene(scenes::circle_pile(kCircles, mu)));
 }
 
 void expect_contained(const std::vector<BodyState>& bodies, int step) {

@@ -17,6 +17,7 @@
 #include <limits>
 #include <string>
 
+#include "scenes/scenes.h"
 #include "stability_scenes.h"
 
 namespace phys::testing {
@@ -89,28 +90,10 @@ struct SmallPile {
 };
 
 // `circles` circles of radius 0.5 rained in rows from 1 m up, 1.2 m apart, with a
-// random jitter of 0.1 m and a random sideways speed of up to 1 m/s.
+// random jitter of 0.1 m and a random sideways speed of up to 1 m/s (the scene
+// library's rained circles, which physics-settle builds too).
 void build_small_pile(World& world, const SmallPile& pile) {
-  const double half = pile.width / 2.0;
-  const auto fixed = [&](Vec2 centre, Vec2 half_extents) {
-    BodyDef def = box_def(centre, half_extents, Motion::Static);
-    def.contact_friction = pile.mu;
-    add_or_fail(world, def);
-  };
-  fixed({0.0, -0.5}, {half + 1.0, 0.5});
-  fixed({-half - 0.5, 250.0}, {0.5, 250.0});
-  fixed({half + 0.5, 250.0}, {0.5, 250.0});
-  const int per_row = static_cast<int>(pile.width / 1.2);
-  Rain rain;
-  for (int n = 0; n < pile.circles; ++n) {
-    const int row = n / per_row;
-    const int column = n % per_row;
-    BodyDef def = circle_def(
-        {-half + 0.6 + 1.2 * column + 0.1 * rain.uniform(-1.0, 1.0), 1.0 + 1.2 * row}, 0.5);
-    def.velocity = {rain.uniform(-1.0, 1.0), 0.0};
-    def.contact_friction = pile.mu;
-    add_or_fail(world, def);
-  }
+  scenes::add_to_world(world, scenes::rained_circles_scene({pile.width, pile.circles, pile.mu, 0}));
 }
 
 // The time from which every circle stays asleep to 40 s, or infinity when some

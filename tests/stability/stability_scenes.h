@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "physics_test_support.h"
-#include "rain.h"
 
 namespace phys::testing {
 

@@ -7,10 +7,12 @@
 #include <vector>
 
 #include "physics_test_support.h"
-#include "rain.h"
+#include "scenes/random.h"
 
 namespace phys::testing {
 namespace {
+
+using scenes::Rain;
 
 struct Pile {
   World world;

@@ -10,10 +10,12 @@
 #include <vector>
 
 #include "physics_test_support.h"
-#include "rain.h"
+#include "scenes/random.h"
 
 namespace phys::testing {
 namespace {
+
+using scenes::Rain;
 
 constexpr double kG = 9.81;
 // A ball of radius 0.5 whose centre starts 5 m above the level at which it touches

@@ -33,6 +33,10 @@ struct BodyShape {
   double mass = 0.0;
   double restitution = 0.0;
   Vec2 friction;
+
+  // Half the size of the axis-aligned box it occupies: a box's half extents, a
+  // circle's (radius, radius), as the server sizes bodies.
+  Vec2 box_half_size() const;
 };
 
 // A dynamic body's state after a tick.

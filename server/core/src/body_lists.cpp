@@ -18,19 +18,19 @@ void WorldImpl::rebuild_lists() {
   // any body of a settling pile fell asleep or woke. Their warm-start entries stay
   // in the pool too; only a body that leaves the list keeps its own in its slot.
   // (A slot reused by add_body since is already kWarmInSlot and empty.)
-  previous_active_.swap(active_);
-  active_.clear();
+  previous_active_.swap(lists.active);
+  lists.active.clear();
   listed_.resize(bodies.size(), 0);
   for (std::uint32_t slot : previous_active_) {
     if (is_awake_dynamic(bodies[slot])) {
-      active_.push_back(slot);
+      lists.active.push_back(slot);
       listed_[slot] = 1;
     } else if (warm_first[slot] != kWarmInSlot) {
       std::copy_n(warm_pool.begin() + warm_first[slot], warm_count[slot], warm[slot].entries);
       warm_first[slot] = kWarmInSlot;
     }
   }
-  const std::size_t kept = active_.size();
+  const std::size_t kept = lists.active.size();
   // A few bodies fell asleep or woke: only they are looked at. When many did (more
   // than an eighth of the bodies: a bound chosen, not measured), sorting them would
   // save little over the walk over every body.
@@ -39,32 +39,32 @@ void WorldImpl::rebuild_lists() {
   } else {
     rebuild_fixed_and_joined();
   }
-  for (std::size_t i = 0; i < kept; ++i) listed_[active_[i]] = 0;
+  for (std::size_t i = 0; i < kept; ++i) listed_[lists.active[i]] = 0;
   changed_slots_.clear();
   rebuild_all_ = false;
-  joined_ = kept == 0 ? 0 : active_.size() - kept;
-  fixed_grid_.build(fixed_boxes_);
+  lists.joined = kept == 0 ? 0 : lists.active.size() - kept;
+  lists.fixed_grid.build(lists.fixed_boxes);
   lists_dirty_ = false;
-  candidates_valid_ = false;
+  candidates.valid = false;
 }
 
 // Every body: the awake ones not kept join the awake list at its end (woken or
 // added, in slot order), the rest are the static and sleeping ones.
 void WorldImpl::rebuild_fixed_and_joined() {
-  fixed_.clear();
-  fixed_boxes_.clear();
-  fixed_circles_ = 0;
-  fixed_sleeping_ = 0;
+  lists.fixed.clear();
+  lists.fixed_boxes.clear();
+  lists.fixed_circles = 0;
+  lists.fixed_sleeping = 0;
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
     if (!b.alive) continue;
     if (is_awake_dynamic(b)) {
-      if (!listed_[i]) active_.push_back(i);
+      if (!listed_[i]) lists.active.push_back(i);
     } else {
-      fixed_.push_back(i);
-      fixed_boxes_.push_back(b.bounds());
-      fixed_circles_ += b.shape == Shape::Circle ? 1 : 0;
-      fixed_sleeping_ += b.is_dynamic() ? 1 : 0;
+      lists.fixed.push_back(i);
+      lists.fixed_boxes.push_back(b.bounds());
+      lists.fixed_circles += b.shape == Shape::Circle ? 1 : 0;
+      lists.fixed_sleeping += b.is_dynamic() ? 1 : 0;
     }
   }
 }
@@ -78,15 +78,15 @@ void WorldImpl::update_fixed_and_joined() {
   std::sort(changed.begin(), changed.end());
   changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
   for (std::uint32_t slot : changed) {
-    if (is_awake_dynamic(bodies[slot]) && !listed_[slot]) active_.push_back(slot);
+    if (is_awake_dynamic(bodies[slot]) && !listed_[slot]) lists.active.push_back(slot);
   }
   const auto count_in = [this](std::uint32_t slot) {
-    fixed_circles_ += bodies[slot].shape == Shape::Circle ? 1 : 0;
-    fixed_sleeping_ += bodies[slot].is_dynamic() ? 1 : 0;
+    lists.fixed_circles += bodies[slot].shape == Shape::Circle ? 1 : 0;
+    lists.fixed_sleeping += bodies[slot].is_dynamic() ? 1 : 0;
   };
   const auto count_out = [this](std::uint32_t slot) {
-    fixed_circles_ -= bodies[slot].shape == Shape::Circle ? 1 : 0;
-    fixed_sleeping_ -= bodies[slot].is_dynamic() ? 1 : 0;
+    lists.fixed_circles -= bodies[slot].shape == Shape::Circle ? 1 : 0;
+    lists.fixed_sleeping -= bodies[slot].is_dynamic() ? 1 : 0;
   };
   // Merged by slot: the fixed bodies that did not change, and the changed ones that
   // are fixed now.
@@ -94,14 +94,14 @@ void WorldImpl::update_fixed_and_joined() {
   merged_fixed_boxes_.clear();
   std::size_t i = 0;
   const auto keep_until = [&](std::uint32_t slot) {
-    for (; i < fixed_.size() && fixed_[i] < slot; ++i) {
-      merged_fixed_.push_back(fixed_[i]);
-      merged_fixed_boxes_.push_back(fixed_boxes_[i]);
+    for (; i < lists.fixed.size() && lists.fixed[i] < slot; ++i) {
+      merged_fixed_.push_back(lists.fixed[i]);
+      merged_fixed_boxes_.push_back(lists.fixed_boxes[i]);
     }
   };
   for (std::uint32_t slot : changed) {
     keep_until(slot);
-    if (i < fixed_.size() && fixed_[i] == slot) {  // it was fixed
+    if (i < lists.fixed.size() && lists.fixed[i] == slot) {  // it was fixed
       ++i;
       count_out(slot);
     }
@@ -113,8 +113,8 @@ void WorldImpl::update_fixed_and_joined() {
     }
   }
   keep_until(UINT32_MAX);
-  fixed_.swap(merged_fixed_);
-  fixed_boxes_.swap(merged_fixed_boxes_);
+  lists.fixed.swap(merged_fixed_);
+  lists.fixed_boxes.swap(merged_fixed_boxes_);
 }
 
 }  // namespace phys

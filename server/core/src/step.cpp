@@ -1,145 +1,103 @@
-// The order of a sub-step (StepRunner::run), the processing order of the awake
-// bodies (lowest first), and WorldImpl::step.
-#include <algorithm>
+// The recipe of a sub-step: its phases in order and what flows between them
+// (step_phases.h), each timed into the step's profile when profiling is on; and
+// WorldImpl::step, the sub-steps of one step.
 #include <chrono>
-#include <utility>
-#include <vector>
+#include <span>
 
 #include "phase_timer.h"
-#include "step_runner.h"
+#include "step_phases.h"
+#include "step_shared.h"
 
 namespace phys {
 
-void StepRunner::run() {
-  if (w_.lists_dirty_) w_.rebuild_lists();
-  w_.counters.sleeping_bodies_skipped += w_.fixed_sleeping_;
-  if (w_.active_.empty()) return;
+namespace {
+
+void run_sub_step(WorldImpl& w, double h) {
+  const BodyLists& lists = w.current_lists();
+  w.counters.sleeping_bodies_skipped += lists.fixed_sleeping;
+  if (lists.active.empty()) return;
+  const StepContext ctx(w.settings, h);
+  const bool timed = w.settings.profile;
+  StepProfile& profile = w.profile;
+
+  // Friction, acceleration and gravity: each awake body's free motion, lowest first.
+  Order order{};
+  FreeMotion motion{};
   {
-    PhaseTimer t(s_.profile, w_.profile.integrate);
-    order_by_height();
-    integrate();
+    PhaseTimer t(timed, profile.order_and_integrate);
+    order = order_by_height(ctx, w);
+    motion = integrate(ctx, w, order);
   }
   {
-    PhaseTimer t(s_.profile, w_.profile.broadphase);
-    find_candidates();
+    PhaseTimer t(timed, profile.candidates);
+    find_candidates(ctx, w, order, motion);
   }
-  w_.contact_of_candidate_.assign(w_.candidates_.size(), kNone);
-  w_.contact_normal_.resize(w_.candidates_.size());
-  w_.contact_near_miss_.resize(w_.candidates_.size());
-  w_.contact_gap_.resize(w_.candidates_.size());
-  if (any_active_box_) {
-    move(1);
-    collide_on_y();
-    move(0);
+  // The contacts of this sub-step, marked by the moves and the position passes.
+  StepScratch::Marks& marks = w.scratch.marks;
+  const std::size_t candidates = w.candidates.list.size();
+  marks.contact_of.assign(candidates, kNone);
+  marks.normal.resize(candidates);
+  marks.near_miss.resize(candidates);
+  marks.gap.resize(candidates);
+  // Move on Y, collide on Y; move on X, collide on X. With no awake box there is no
+  // collision on Y: both moves are one walk.
+  if (motion.any_box) {
+    {
+      PhaseTimer t(timed, profile.moves);
+      move_on_axis(ctx, w, 1);
+    }
+    {
+      PhaseTimer t(timed, profile.position_passes);
+      collide_on_y(ctx, w, order, motion);
+    }
+    PhaseTimer t(timed, profile.moves);
+    move_on_axis(ctx, w, 0);
   } else {
-    move_both_axes();
-  }
-  collide_on_x();
-  if (w_.contact_events_on) {
-    PhaseTimer t(s_.profile, w_.profile.narrowphase);
-    note_touching_pairs();
+    PhaseTimer t(timed, profile.moves);
+    move_both_axes(ctx, w);
   }
   {
-    PhaseTimer t(s_.profile, w_.profile.resolve);
-    restitution();  // and, with hold_, update_held's work
+    PhaseTimer t(timed, profile.position_passes);
+    collide_on_x(ctx, w, order, motion);
   }
+  if (w.contact_events_on) {
+    PhaseTimer t(timed, profile.contact_events);
+    note_touching_pairs(ctx, w);
+  }
+  // Restitution: the velocity solver, over the contacts marked above.
+  std::span<const ContactRecord> contacts;
   {
-    PhaseTimer t(s_.profile, w_.profile.sleep);
-    hold_in_bounds();
-    update_sleep();
+    PhaseTimer t(timed, profile.velocity_solver);
+    contacts = solve_velocities(ctx, w, order, motion);
+    if (!contacts.empty()) {
+      if (w.settings.warm_starting) remember_impulses(w, contacts);
+      if (ctx.shock && motion.any_contact_friction) update_loads(ctx, w, order, contacts);
+    }
   }
+  PhaseTimer t(timed, profile.bounds_and_sleep);
+  hold_in_bounds(ctx, w);
+  update_sleep(ctx, w, order, contacts);
 }
 
-// Awake bodies are processed from the lowest (along gravity) up, so that a body's
-// supports are resolved before it. The order persists between steps and is
-// nearly sorted, so insertion sort is about O(N).
-inline void StepRunner::order_by_height() {
-  auto& order = w_.active_;
-  auto& keys = w_.sort_keys_;
-  keys.resize(order.size());
-  std::size_t jumps = 0;  // neighbours in the order that are not neighbours in slots
-  for (std::size_t p = 1; p < order.size(); ++p) {
-    jumps += static_cast<std::size_t>(order[p] != order[p - 1] + 1);
-  }
-  // Far from slot order (a pile that has flowed), the passes over the bodies read
-  // them all over memory and prefetch them; in slot order (a stack, a fresh scene)
-  // the hardware streams them on its own.
-  scattered_ = 4 * jumps > order.size();
-  for (std::size_t p = 0; p < order.size(); ++p) {
-    if (scattered_) prefetch_ahead(p);
-    keys[p] = dot(body(order[p]).position, up_);
-  }
-  if (w_.joined_ > 0) merge_joined();
-  // Heights within the slop are ties, broken by slot: a row of boxes at one height
-  // keeps its order although rounding moves them by 1e-16 (and the candidate pairs,
-  // grouped by position in this order, can then be reused).
-  const double tie = s_.slop;
-  const auto before = [tie](double ka, std::uint32_t a, double kb, std::uint32_t b) {
-    return ka < kb - tie || (ka <= kb + tie && a < b);
-  };
-  std::size_t moves = 0;
-  const std::size_t budget = 8 * order.size() + 64;
-  for (std::size_t p = 1; p < order.size() && moves <= budget; ++p) {
-    const double key = keys[p];
-    const std::uint32_t slot = order[p];
-    std::size_t q = p;
-    while (q > 0 && before(key, slot, keys[q - 1], order[q - 1])) {
-      keys[q] = keys[q - 1];
-      order[q] = order[q - 1];
-      --q;
-      ++moves;
-    }
-    keys[q] = key;
-    order[q] = slot;
-  }
-  order_changed_ = order_changed_ || moves > 0;
-  if (moves > budget) {  // far from sorted (first step, a shuffle): sort outright
-    std::vector<std::pair<double, std::uint32_t>> keyed(order.size());
-    for (std::size_t p = 0; p < order.size(); ++p) {
-      keyed[p] = {dot(body(order[p]).position, up_), order[p]};
-    }
-    std::sort(keyed.begin(), keyed.end());
-    for (std::size_t p = 0; p < order.size(); ++p) order[p] = keyed[p].second;
-  }
-}
-
-// The bodies that joined the list at its rebuild (woken or added) wait at its end
-// in slot order: sorted by height among themselves and merged into the kept
-// bodies' order in one walk, so that the insertion sort has only the usual small
-// moves left (from the end, each would walk past most of the list).
-inline void StepRunner::merge_joined() {
-  auto& order = w_.active_;
-  auto& keys = w_.sort_keys_;
-  const std::size_t n = order.size();
-  const std::size_t kept = n - w_.joined_;
-  w_.joined_ = 0;
-  auto& keyed = w_.keyed_order_;
-  keyed.resize(n);
-  for (std::size_t p = 0; p < n; ++p) keyed[p] = {keys[p], order[p]};
-  std::sort(keyed.begin() + static_cast<std::ptrdiff_t>(kept), keyed.end());
-  std::size_t i = 0;
-  std::size_t j = kept;
-  for (std::size_t p = 0; p < n; ++p) {
-    const bool take_kept = j == n || (i < kept && !(keyed[j] < keyed[i]));
-    const auto& next = take_kept ? keyed[i++] : keyed[j++];
-    keys[p] = next.first;
-    order[p] = next.second;
-  }
-  order_changed_ = true;
-}
+}  // namespace
 
 void WorldImpl::step(double dt) {
-  const auto start = std::chrono::steady_clock::now();
+  // The world reads a clock only to fill the profile, when asked to.
+  std::chrono::steady_clock::time_point start{};
+  if (settings.profile) start = std::chrono::steady_clock::now();
   profile = {};
   const double h = dt / settings.substeps;
   if (contact_events_on) contact_tracker.begin_step();
   for (int i = 0; i < settings.substeps; ++i) {
-    StepRunner(*this, h).run();
+    run_sub_step(*this, h);
     ++counters.substeps;
   }
   ++steps;
   ++counters.steps;
-  if (contact_events_on) counters.contact_events += contact_tracker.finish(steps, bodies);
+  if (contact_events_on) {
+    PhaseTimer t(settings.profile, profile.contact_events);
+    counters.contact_events += contact_tracker.finish(steps, bodies);
+  }
   if (settings.profile) {
     profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -1,10 +1,12 @@
 // What the step notes for contact events (physics/contact_events.h), when they are
 // on: the swept hits of the moves, and the pairs touching after the position
 // passes. Neither changes a body; with events off neither runs.
+// Reads: the bodies and the candidates. Writes: the world's ContactTracker.
 #include <algorithm>
 #include <cmath>
 
-#include "step_runner.h"
+#include "step_phases.h"
+#include "step_shared.h"
 
 namespace phys {
 
@@ -72,13 +74,13 @@ PairGeometry measure(const Body& a, const Body& b) {
 
 }  // namespace
 
-void StepRunner::note_touching_pairs() {
-  ContactTracker& tracker = w_.contact_tracker;
-  tracker.mark_stepped(w_.active_, w_.bodies.size());
-  const double margin = near_miss_margin();
-  for (const Candidate& cand : w_.candidates_) {
-    const Body& a = body(cand.lower);
-    const Body& b = body(cand.upper);
+void note_touching_pairs(const StepContext& ctx, WorldImpl& w) {
+  ContactTracker& tracker = w.contact_tracker;
+  tracker.mark_stepped(w.lists.active, w.bodies.size());
+  const double margin = near_miss_margin(ctx.settings);
+  for (const Candidate& cand : w.candidates.list) {
+    const Body& a = w.bodies[cand.lower];
+    const Body& b = w.bodies[cand.upper];
     Aabb grown = a.bounds();
     grown.min -= Vec2{margin, margin};
     grown.max += Vec2{margin, margin};
@@ -90,19 +92,19 @@ void StepRunner::note_touching_pairs() {
     tracker.note({cand.lower, a.generation}, {cand.upper, b.generation}, g.point, g.normal,
                  -dot(vb - a.velocity, g.normal));
   }
-  w_.counters.contact_pair_tests += w_.candidates_.size();
+  w.counters.contact_pair_tests += w.candidates.list.size();
 }
 
-void StepRunner::note_swept_hit(const Body& mover, std::uint32_t mover_slot, int axis, double level,
-                                double speed, std::uint32_t obstacle_slot) {
+void note_swept_hit(WorldImpl& w, const Body& mover, std::uint32_t mover_slot, int axis,
+                    double level, double speed, std::uint32_t obstacle_slot) {
   Body at_impact = mover;
   component(at_impact.position, axis) = level;
   component(at_impact.velocity, axis) = speed;
-  const PairGeometry g = measure(at_impact, body(obstacle_slot));
+  const PairGeometry g = measure(at_impact, w.bodies[obstacle_slot]);
   // The obstacle is static or asleep: still.
-  w_.contact_tracker.note({mover_slot, mover.generation},
-                          {obstacle_slot, body(obstacle_slot).generation}, g.point, g.normal,
-                          dot(at_impact.velocity, g.normal));
+  w.contact_tracker.note({mover_slot, mover.generation},
+                         {obstacle_slot, w.bodies[obstacle_slot].generation}, g.point, g.normal,
+                         dot(at_impact.velocity, g.normal));
 }
 
 }  // namespace phys

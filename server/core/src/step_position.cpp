@@ -1,22 +1,61 @@
 // The position passes: overlapping pairs pushed apart by penetration plus slop
 // (boxes one axis at a time, circles along their normal), with shock propagation,
-// static friction, and the contacts and near misses the velocity phase needs.
+// static friction, and the contacts and near misses the velocity solver needs.
+// Reads: the candidates, the bodies, scratch.motion.step_start (static friction).
+// Writes: the bodies' positions and corrections; scratch.marks, supported,
+// position and to_wake.
 #include <algorithm>
 #include <cmath>
 
-#include "phase_timer.h"
-#include "step_runner.h"
+#include "step_phases.h"
+#include "step_shared.h"
 
 namespace phys {
 
+namespace {
+
+// A normal this close to gravity's line is a face resting on a face.
+constexpr double kAlongGravity = 1.0 - 1.0e-9;
+
+inline void prefetch_pair(const Body* bodies, const Candidate& cand) {
+  __builtin_prefetch(&bodies[cand.lower]);
+  __builtin_prefetch(&bodies[cand.upper]);
+}
+
+class PositionPass : StepPhase {
+ public:
+  PositionPass(const StepContext& ctx, WorldImpl& world, const Order& order,
+               const FreeMotion& motion)
+      : StepPhase(ctx, world), order_(order), motion_(motion) {}
+  template <int axis>
+  void collide_boxes_on();
+  void collide_with_circles();
+
+ private:
+  double near_gap(const Body& a, const Body& b) const;
+  bool near(const Body& a, const Body& b) const;
+  template <typename Resolve>
+  void resolve_passes(Resolve&& resolve);
+  template <bool kPrefetch, typename Resolve>
+  void resolve_passes(Resolve& resolve);
+  bool separate(const Candidate& cand, Body& a, Body& b, Vec2 n, double depth);
+  void hold_by_static_friction(const Candidate& cand, Body& a, Body& b, Vec2 n, double push,
+                               double wa, double wb);
+  bool may_undo_slide(const Body& body, Vec2 undo) const;
+  void record_near_miss(const Candidate& cand, Vec2 n, double gap);
+
+  Order order_;
+  FreeMotion motion_;
+};
+
 // How close two bodies must be after the first pass to be worth another: within
 // the push margin of each other.
-inline double StepRunner::near_gap(const Body& a, const Body& b) const {
+inline double PositionPass::near_gap(const Body& a, const Body& b) const {
   return kPushMargin * std::min(std::min(a.half.x, a.half.y), std::min(b.half.x, b.half.y)) +
          s_.slop;
 }
 
-inline bool StepRunner::near(const Body& a, const Body& b) const {
+inline bool PositionPass::near(const Body& a, const Body& b) const {
   const double gap = near_gap(a, b);
   Aabb grown = a.bounds();
   grown.min -= Vec2{gap, gap};
@@ -27,13 +66,16 @@ inline bool StepRunner::near(const Body& a, const Body& b) const {
 // Gauss-Seidel passes over the candidate pairs: the first pass visits all of them
 // and keeps the pairs near enough to matter; later passes visit only those.
 // The passes come in two builds: with prefetching for bodies scattered in
-// memory, and without it, so that a stack's loop carries no trace of it. The pair
+// memory, and without it, so that a stack's loop carries no trace of it. Measured
+// against one instance (bench/compare-core.sh, thread CPU time per step): never
+// prefetching, rain-16000 ran 1.28x (sleep on) / 1.41x (off); always, the awake
+// pyramid-5050 ran 1.022x, 3% over the run-to-run noise's mean. The pair
 // tests given to it (the lambdas below) are forced inline: each is the loop's body,
 // and the compiler's own budget, spent on the passes inlined into their phase,
 // left a call per pair.
 template <typename Resolve>
-inline void StepRunner::resolve_passes(Resolve&& resolve) {
-  if (scattered_) {
+inline void PositionPass::resolve_passes(Resolve&& resolve) {
+  if (order_.scattered) {
     resolve_passes<true>(resolve);
   } else {
     resolve_passes<false>(resolve);
@@ -41,18 +83,18 @@ inline void StepRunner::resolve_passes(Resolve&& resolve) {
 }
 
 template <bool kPrefetch, typename Resolve>
-inline void StepRunner::resolve_passes(Resolve& resolve) {
-  auto& near_list = w_.near_candidates_;
-  const auto candidates = static_cast<std::uint32_t>(w_.candidates_.size());
+inline void PositionPass::resolve_passes(Resolve& resolve) {
+  auto& near_list = x_.position.near_candidates;
+  const auto candidates = static_cast<std::uint32_t>(w_.candidates.list.size());
   near_list.resize(candidates);  // filled by index: no growth check per pair
   // The arrays by plain pointers: a push marks support through a byte store,
   // which may alias anything, and would make each pair reload them.
   std::uint32_t* const listed = near_list.data();
-  const Candidate* const cands = w_.candidates_.data();
+  const Candidate* const cands = w_.candidates.list.data();
   Body* const bodies = w_.bodies.data();
   std::uint32_t near_count = 0;
   for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
-    w_.supported_.assign(w_.active_.size(), 0);
+    x_.supported.assign(w_.lists.active.size(), 0);
     bool moved = false;
     if (iteration == 0) {
       for (std::uint32_t c = 0; c < candidates; ++c) {
@@ -79,18 +121,12 @@ inline void StepRunner::resolve_passes(Resolve& resolve) {
   }
 }
 
-inline void StepRunner::prefetch_pair(const Body* bodies, const Candidate& cand) {
-  __builtin_prefetch(&bodies[cand.lower]);
-  __builtin_prefetch(&bodies[cand.upper]);
-}
-
 // Per-axis resolution of box pairs: the recipe's penetration on the axis, pushed
 // apart by penetration plus slop, up if above, down if below. The axis is a
 // template argument: picking a component by a run-time axis cost a branch per
 // use, and the registers those branches tied up spilled the pair loop's state.
 template <int axis>
-inline void StepRunner::collide_boxes_on() {
-  PhaseTimer t(s_.profile, w_.profile.narrowphase);
+inline void PositionPass::collide_boxes_on() {
   constexpr int other = 1 - axis;
   const Vec2 unit = axis == 0 ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
   std::uint64_t tests = 0;  // counted here, added once: the loop keeps it in a register
@@ -112,7 +148,7 @@ inline void StepRunner::collide_boxes_on() {
       // Two dynamic boxes side by side (across gravity) fall together and carry
       // nothing of each other: their near miss would only add work to a stack's
       // velocity pass (a third of it in the 5,050-box pyramid).
-      const bool side_by_side = !cand.fixed && std::fabs(dot(n, up_)) < 1.0 - kAlongGravity;
+      const bool side_by_side = !cand.fixed && std::fabs(dot(n, c_.up)) < 1.0 - kAlongGravity;
       if (-gap <= near_miss_margin() && !side_by_side) record_near_miss(cand, n, -gap);
       return false;
     }
@@ -126,24 +162,18 @@ inline void StepRunner::collide_boxes_on() {
   w_.counters.box_box_tests += tests;
 }
 
-// The Y phase: boxes on Y (circles wait for the X phase, see collide_on_x).
-void StepRunner::collide_on_y() { collide_boxes_on<1>(); }
-
-// The X phase: boxes on X, then every pair with a circle along its normal (a
-// circle's normal needs no axis split).
-void StepRunner::collide_on_x() {
-  if (any_active_box_) collide_boxes_on<0>();
-  if (!any_active_circle_ && !(any_active_box_ && w_.fixed_circles_ > 0)) return;
-  PhaseTimer t(s_.profile, w_.profile.narrowphase);
+// Every pair with a circle, along its normal (a circle's normal needs no axis
+// split).
+void PositionPass::collide_with_circles() {
   std::uint64_t circle_tests = 0;
   std::uint64_t mixed_tests = 0;
   // Shapes are tested grown by the near-miss margin: a pair a hair apart (as the
   // last push left it) is still a contact for the velocity pass. Circle pairs and
   // a circle facing a box's face are grown by the speculative margin too (see
-  // speculative_margin_); a circle beside a box's corner is not: the corner of
+  // StepContext::speculative_margin); a circle beside a box's corner is not: the corner of
   // the next tile of a floor is where a rolling circle would catch on a seam.
   const double margin = near_miss_margin();
-  const double grown = margin + speculative_margin_;
+  const double grown = margin + c_.speculative_margin;
   resolve_passes([&](const Candidate& cand, Body& a, Body& b) __attribute__((always_inline)) {
     Contact contact;
     bool corner = false;
@@ -178,9 +208,9 @@ void StepRunner::collide_on_x() {
 // Pushes a and b apart along n (from a toward b) by depth plus slop, split by
 // inverse mass, and records the contact for restitution. With shock propagation a
 // supported body is immovable for the bodies it carries.
-inline bool StepRunner::separate(const Candidate& cand, Body& a, Body& b, Vec2 n, double depth) {
-  const double up = dot(n, up_);
-  const auto c = static_cast<std::uint32_t>(&cand - w_.candidates_.data());
+inline bool PositionPass::separate(const Candidate& cand, Body& a, Body& b, Vec2 n, double depth) {
+  const double up = dot(n, c_.up);
+  const auto c = static_cast<std::uint32_t>(&cand - w_.candidates.list.data());
   double wa = a.inv_mass;
   double wb = cand.fixed ? 0.0 : b.inv_mass;
   carry(cand.fixed, cand.lower_pos, cand.upper_pos, up, wa, wb);
@@ -191,19 +221,19 @@ inline bool StepRunner::separate(const Candidate& cand, Body& a, Body& b, Vec2 n
   // A sleeping body rests on sleeping ones only (update_sleep): one that an awake
   // body presses into from below, however slowly, rests on that body now, and
   // wakes (what rests on it wakes in turn as it moves).
-  if (cand.fixed && gravity_on_ && up > 0.0 && depth > s_.slop && b.is_dynamic()) {
-    w_.to_wake_.push_back(cand.upper);
+  if (cand.fixed && c_.gravity_on && up > 0.0 && depth > s_.slop && b.is_dynamic()) {
+    x_.to_wake.push_back(cand.upper);
   }
   const double push = depth + s_.slop;
   if (depth == 0.0 && !(push > 0.0)) return false;
   a.position -= n * (push * wa);
   b.position += n * (push * wb);
-  if (any_contact_friction_ && a.contact_friction > 0.0 && b.contact_friction > 0.0) {
+  if (motion_.any_contact_friction && a.contact_friction > 0.0 && b.contact_friction > 0.0) {
     hold_by_static_friction(cand, a, b, n, push, wa, wb);
   }
   // Only pushes against something immovable (a static or sleeping body, or a
   // supported one) may cancel velocity below; a push shared by two free bodies
-  // is the restitution phase's to turn into equal and opposite impulses.
+  // is the velocity solver's to turn into equal and opposite impulses.
   if (wa == 1.0) a.correction -= n * push;
   if (wb == 1.0) b.correction += n * push;
   ++w_.counters.contacts;
@@ -217,14 +247,14 @@ inline bool StepRunner::separate(const Candidate& cand, Body& a, Body& b, Vec2 n
 // velocity pass cannot undo. When the pair's tangential displacement over the
 // sub-step is within the friction cone (at most mu times the push), it is undone:
 // a body on a slope no steeper than atan(mu) stays where it was.
-inline void StepRunner::hold_by_static_friction(const Candidate& cand, Body& a, Body& b, Vec2 n,
-                                                double push, double wa, double wb) {
-  const Vec2 moved_a = a.position - w_.step_start_[cand.lower_pos];
-  const Vec2 moved_b = cand.fixed ? Vec2{} : b.position - w_.step_start_[cand.upper_pos];
+inline void PositionPass::hold_by_static_friction(const Candidate& cand, Body& a, Body& b, Vec2 n,
+                                                  double push, double wa, double wb) {
+  const Vec2 moved_a = a.position - x_.motion.step_start[cand.lower_pos];
+  const Vec2 moved_b = cand.fixed ? Vec2{} : b.position - x_.motion.step_start[cand.upper_pos];
   const Vec2 relative = moved_b - moved_a;
   const Vec2 slide = relative - n * dot(relative, n);
   const double mu = mix_contact_friction(a.contact_friction, b.contact_friction) *
-                    load_on(cand.fixed, a, b, dot(n, up_));
+                    load_on(cand.fixed, a, b, dot(n, c_.up));
   if (!(length(slide) <= mu * push)) return;
   if (wa > 0.0 && !may_undo_slide(a, slide)) return;
   if (wb > 0.0 && !may_undo_slide(b, -slide)) return;
@@ -241,25 +271,25 @@ inline void StepRunner::hold_by_static_friction(const Candidate& cand, Body& a, 
 // nothing else can move. Undoing that left it at a fixed point deep inside its
 // neighbours, and the more friction the deeper: up to 0.096 m in the 16,000-circle
 // pile at friction 5 (docs/PHYSICS.md, "Squeezes at high friction").
-inline bool StepRunner::may_undo_slide(const Body& body, Vec2 undo) const {
+inline bool PositionPass::may_undo_slide(const Body& body, Vec2 undo) const {
   const Vec2 drive = driving_acceleration(body);
   if (drive.x == 0.0 && drive.y == 0.0) return false;
   return dot(undo, drive) <= 0.0;
 }
 
 // gap: how far apart the pair is (at most the margin it was found within).
-inline void StepRunner::record_near_miss(const Candidate& cand, Vec2 n, double gap) {
+inline void PositionPass::record_near_miss(const Candidate& cand, Vec2 n, double gap) {
   // A near miss carries weight like a touching contact: the support marks pass
   // through it, or a body resting a slop above its support would not count as
   // supported, and what it carries would push it down into the pile.
-  const double up = dot(n, up_);
+  const double up = dot(n, c_.up);
   // A body already supported by a contact found before this one needs no second
   // support straight along gravity from a near miss (a box on two boxes rests on
   // either): half the contacts of a stack for the velocity pass, and the same
   // rest. A slanted one it keeps: a ball in a pocket needs both sides.
   const bool along_gravity = std::fabs(up) >= kAlongGravity;
-  if (along_gravity && up > 0.0 && !cand.fixed && w_.supported_[cand.upper_pos]) return;
-  if (along_gravity && up < 0.0 && w_.supported_[cand.lower_pos]) return;
+  if (along_gravity && up > 0.0 && !cand.fixed && x_.supported[cand.upper_pos]) return;
+  if (along_gravity && up < 0.0 && x_.supported[cand.lower_pos]) return;
   double wa = 1.0;
   double wb = 1.0;
   carry(cand.fixed, cand.lower_pos, cand.upper_pos, up, wa, wb);
@@ -267,12 +297,29 @@ inline void StepRunner::record_near_miss(const Candidate& cand, Vec2 n, double g
   // than the rest speed: a faster approach is a collision, which the next step
   // finds as an overlap and bounces.
   const Vec2 vb = cand.fixed ? Vec2{} : body(cand.upper).velocity;
-  if (dot(vb - body(cand.lower).velocity, n) < -rest_speed_) return;
-  const auto c = static_cast<std::uint32_t>(&cand - w_.candidates_.data());
-  if (w_.contact_of_candidate_[c] != kNone && !w_.contact_near_miss_[c]) return;
+  if (dot(vb - body(cand.lower).velocity, n) < -c_.rest_speed) return;
+  const auto c = static_cast<std::uint32_t>(&cand - w_.candidates.list.data());
+  if (x_.marks.contact_of[c] != kNone && !x_.marks.near_miss[c]) return;
   record_contact(c, n);
-  w_.contact_near_miss_[c] = 1;
-  w_.contact_gap_[c] = gap;
+  x_.marks.near_miss[c] = 1;
+  x_.marks.gap[c] = gap;
+}
+
+}  // namespace
+
+// The Y phase: boxes on Y (circles wait for the X phase).
+void collide_on_y(const StepContext& ctx, WorldImpl& w, const Order& order,
+                  const FreeMotion& motion) {
+  PositionPass(ctx, w, order, motion).collide_boxes_on<1>();
+}
+
+// The X phase: boxes on X, then every pair with a circle.
+void collide_on_x(const StepContext& ctx, WorldImpl& w, const Order& order,
+                  const FreeMotion& motion) {
+  PositionPass pass(ctx, w, order, motion);
+  if (motion.any_box) pass.collide_boxes_on<0>();
+  if (!motion.any_circle && !(motion.any_box && w.lists.fixed_circles > 0)) return;
+  pass.collide_with_circles();
 }
 
 }  // namespace phys

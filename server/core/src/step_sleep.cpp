@@ -1,30 +1,70 @@
 // The world's bounds, and sleep: bodies still for sleep_time fall asleep as an
 // island, from the bottom up, or as a group held by what sleeps.
+// Reads: the bodies, the candidates (islands), the velocity solver's contact
+// records (what rests on what), scratch.to_wake.
+// Writes: the bodies' positions and velocities (bounds), their stillness and
+// sleep; wakes what was hit; scratch.sleep.
 #include <algorithm>
+#include <cstddef>
+#include <span>
+#include <vector>
 
-#include "step_runner.h"
+#include "step_phases.h"
+#include "step_shared.h"
 
 namespace phys {
 
 namespace {
+
+// Where a Body's cold line begins (its third cache line: still_time and after).
+constexpr std::size_t kColdLineOffset = 2 * 64;
+static_assert(offsetof(Body, still_time) >= kColdLineOffset &&
+                  offsetof(Body, still_anchor) + sizeof(Vec2) <= 3 * 64,
+              "update_sleep prefetches the line of still_time and still_anchor");
 
 // sleep_held_groups' states of a still body.
 constexpr std::uint8_t kCandidate = 1;
 constexpr std::uint8_t kBlocked = 2;
 constexpr std::uint8_t kGrounded = 3;
 
+class SleepPass : StepPhase {
+ public:
+  SleepPass(const StepContext& ctx, WorldImpl& world, const Order& order,
+            std::span<const ContactRecord> contacts)
+      : StepPhase(ctx, world), scattered_(order.scattered), contacts_(contacts) {}
+  void run();
+
+ private:
+  // prefetch_ahead, for a loop that reads a body's cold line too (still_time and
+  // after).
+  void prefetch_ahead_with_cold_line(std::size_t p) const {
+    if (p + kPrefetchAhead < w_.lists.active.size()) {
+      const Body* b = &w_.bodies[w_.lists.active[p + kPrefetchAhead]];
+      __builtin_prefetch(b);
+      __builtin_prefetch(reinterpret_cast<const char*>(b) + kColdLineOffset);
+    }
+  }
+  void sleep_from_the_bottom(std::vector<std::uint8_t>& asleep);
+  void sleep_held_groups(std::span<const ContactRecord> contacts,
+                         std::vector<std::uint8_t>& asleep);
+
+  const bool scattered_;                           // the processing order is far from slot order
+  const std::span<const ContactRecord> contacts_;  // the velocity solver's records
+};
+
 }  // namespace
 
 // A world with bounds keeps every awake body inside them: one beyond an edge is put
 // back on it and keeps no velocity out of it.
-void StepRunner::hold_in_bounds() {
-  if (!s_.has_bounds) return;
-  for (std::uint32_t slot : w_.active_) {
-    Body& b = body(slot);
+void hold_in_bounds(const StepContext& ctx, WorldImpl& w) {
+  const WorldSettings& s = ctx.settings;
+  if (!s.has_bounds) return;
+  for (std::uint32_t slot : w.lists.active) {
+    Body& b = w.bodies[slot];
     bool clamped = false;
     for (int axis = 0; axis < 2; ++axis) {
-      const double lo = component(s_.bounds.min, axis) + component(b.half, axis);
-      const double hi = component(s_.bounds.max, axis) - component(b.half, axis);
+      const double lo = component(s.bounds.min, axis) + component(b.half, axis);
+      const double hi = component(s.bounds.max, axis) - component(b.half, axis);
       double& x = component(b.position, axis);
       double& v = component(b.velocity, axis);
       if (x < lo) {
@@ -37,7 +77,7 @@ void StepRunner::hold_in_bounds() {
         clamped = true;
       }
     }
-    if (clamped) ++w_.counters.bounds_clamps;
+    if (clamped) ++w.counters.bounds_clamps;
   }
 }
 
@@ -45,11 +85,11 @@ void StepRunner::hold_in_bounds() {
 // other form an island (union-find over this sub-step's candidate pairs, static
 // and sleeping bodies not linking), and an island sleeps when all of it is ready,
 // or from the bottom up as far as it is (sleep_from_the_bottom).
-void StepRunner::update_sleep() {
-  for (std::uint32_t slot : w_.to_wake_) w_.wake(slot);
-  w_.to_wake_.clear();
+void SleepPass::run() {
+  for (std::uint32_t slot : x_.to_wake) w_.wake(slot);
+  x_.to_wake.clear();
   if (!s_.sleeping) return;
-  const std::size_t n = w_.active_.size();
+  const std::size_t n = w_.lists.active.size();
   bool any_ready = false;
   // "Still" is judged over the window, not by the speed of one step: a body of a
   // pile jitters by rounding-sized pushes at any instant, but a body at rest stays
@@ -57,23 +97,23 @@ void StepRunner::update_sleep() {
   const double radius = s_.sleep_speed * s_.sleep_time;
   // Whether each body is ready is kept by position: the walks below read it there
   // instead of from the body's cold cache line, all over memory.
-  auto& ready = w_.still_ready_;
+  auto& ready = x_.sleep.still_ready;
   ready.resize(n);
   for (std::uint32_t p = 0; p < n; ++p) {
     if (scattered_) prefetch_ahead_with_cold_line(p);
-    Body& b = body(w_.active_[p]);
+    Body& b = body(w_.lists.active[p]);
     if (length(b.position - b.still_anchor) > radius) {
       b.still_anchor = b.position;
       b.still_time = 0.0;
     } else {
-      b.still_time += h_;
+      b.still_time += c_.h;
     }
     ready[p] = static_cast<std::uint8_t>(b.still_time >= s_.sleep_time);
     any_ready = any_ready || ready[p] != 0;
   }
   if (!any_ready) return;
 
-  auto& parent = w_.island_parent_;
+  auto& parent = x_.sleep.island_parent;
   parent.resize(n);
   for (std::uint32_t p = 0; p < n; ++p) parent[p] = p;
   const auto root = [&parent](std::uint32_t p) {
@@ -82,29 +122,29 @@ void StepRunner::update_sleep() {
   };
   // Islands link through candidate pairs, not only touching ones: neighbours a
   // slop apart in a pile are one island, so no part of a pile sleeps alone.
-  for (const Candidate& cand : w_.candidates_) {
+  for (const Candidate& cand : w_.candidates.list) {
     if (cand.fixed) continue;
     const std::uint32_t a = root(cand.lower_pos);
     const std::uint32_t b = root(cand.upper_pos);
     if (a != b) parent[std::max(a, b)] = std::min(a, b);
   }
-  auto& island_ready = w_.sleep_ready_;
+  auto& island_ready = x_.sleep.island_ready;
   island_ready.assign(n, 1);
   for (std::uint32_t p = 0; p < n; ++p) {
     if (!ready[p]) island_ready[root(p)] = 0;
   }
-  auto& asleep = w_.goes_to_sleep_;
+  auto& asleep = x_.sleep.goes_to_sleep;
   asleep.resize(n);
   for (std::uint32_t p = 0; p < n; ++p) asleep[p] = island_ready[root(p)];
-  if (gravity_on_) sleep_from_the_bottom(asleep);  // no "below" without gravity
+  if (c_.gravity_on) sleep_from_the_bottom(asleep);  // no "below" without gravity
   for (std::uint32_t p = 0; p < n; ++p) {
     if (!asleep[p]) continue;
-    Body& b = body(w_.active_[p]);
+    Body& b = body(w_.lists.active[p]);
     b.awake = false;
     b.velocity = {};
     b.held = {};
     b.load = 1.0;
-    w_.fell_asleep(w_.active_[p]);
+    w_.fell_asleep(w_.lists.active[p]);
   }
 }
 
@@ -117,12 +157,12 @@ void StepRunner::update_sleep() {
 // awake. A sleeping body is as immovable for what it carries as shock
 // propagation already makes a supported one, so the bodies above see no change;
 // without this, one avalanche anywhere in a pile of 16,000 kept all of it awake.
-inline void StepRunner::sleep_from_the_bottom(std::vector<std::uint8_t>& asleep) {
-  const std::span<const ContactRecord> contacts(w_.contacts_.data(), contact_count_);
-  const std::size_t n = w_.active_.size();
-  auto& first = w_.first_support_;
-  auto& supporters = w_.supporters_;
-  auto& cursor = w_.support_cursor_;
+inline void SleepPass::sleep_from_the_bottom(std::vector<std::uint8_t>& asleep) {
+  const std::span<const ContactRecord> contacts = contacts_;
+  const std::size_t n = w_.lists.active.size();
+  auto& first = x_.sleep.first_support;
+  auto& supporters = x_.sleep.supporters;
+  auto& cursor = x_.sleep.support_cursor;
   // Each contact with a vertical component: the awake body on top (kNone when
   // that is the fixed one, which needs no support) and the one under it.
   struct Link {
@@ -148,7 +188,7 @@ inline void StepRunner::sleep_from_the_bottom(std::vector<std::uint8_t>& asleep)
   }
   for (std::uint32_t p = 0; p < n; ++p) {
     if (asleep[p] || first[p] == first[p + 1]) continue;
-    if (!w_.still_ready_[p]) continue;
+    if (!x_.sleep.still_ready[p]) continue;
     // A supporter later in the order (level with p, within the slop) is not judged
     // yet: p waits for the next sub-step.
     const auto on_sleeper = [&](std::uint32_t q) { return q == kNone || asleep[q] != 0; };
@@ -170,23 +210,23 @@ inline void StepRunner::sleep_from_the_bottom(std::vector<std::uint8_t>& asleep)
 // it holds, and so on (a walk over the holders, cycles and all). Of the rest, a
 // body sleeps if its holders lead down to a static or sleeping body (grounded):
 // a group held by nothing asleep is not at rest on anything.
-inline void StepRunner::sleep_held_groups(std::span<const ContactRecord> contacts,
-                                          std::vector<std::uint8_t>& asleep) {
-  const std::size_t n = w_.active_.size();
-  auto& state = w_.held_state_;  // per position: kCandidate, kBlocked, kGrounded, or 0
+inline void SleepPass::sleep_held_groups(std::span<const ContactRecord> contacts,
+                                         std::vector<std::uint8_t>& asleep) {
+  const std::size_t n = w_.lists.active.size();
+  auto& state = x_.sleep.held_state;  // per position: kCandidate, kBlocked, kGrounded, or 0
   state.assign(n, 0);
   bool any = false;
   for (std::uint32_t p = 0; p < n; ++p) {
-    if (!asleep[p] && w_.still_ready_[p]) {
+    if (!asleep[p] && x_.sleep.still_ready[p]) {
       state[p] = kCandidate;
       any = true;
     }
   }
   if (!any) return;
-  const auto& first = w_.first_support_;
+  const auto& first = x_.sleep.first_support;
   const auto has_support = [&first](std::uint32_t p) { return first[p] != first[p + 1]; };
   // (held, holder) pairs, holder kNone when static or sleeping.
-  auto& holds = w_.holds_;
+  auto& holds = x_.sleep.holds;
   holds.clear();
   const auto add = [&](std::uint32_t held, std::uint32_t holder) {
     if (state[held] != kCandidate) return;
@@ -201,21 +241,21 @@ inline void StepRunner::sleep_held_groups(std::span<const ContactRecord> contact
     if (upper != kNone && (k.up > 0.0 || !has_support(upper))) add(upper, lower);
   }
   // Who each awake body holds, for the walks (CSR by holder).
-  auto& start = w_.held_start_;
-  auto& held_by = w_.held_list_;
+  auto& start = x_.sleep.held_start;
+  auto& held_by = x_.sleep.held_list;
   start.assign(n + 1, 0);
   for (const auto& h : holds) {
     if (h.second != kNone) ++start[h.second + 1];
   }
   for (std::size_t p = 0; p < n; ++p) start[p + 1] += start[p];
   held_by.resize(start[n]);
-  auto& cursor = w_.support_cursor_;
+  auto& cursor = x_.sleep.support_cursor;
   cursor.assign(start.begin(), start.end() - 1);
   for (const auto& h : holds) {
     if (h.second != kNone) held_by[cursor[h.second]++] = h.first;
   }
   // Blocked: held by a moving body, or by a blocked one.
-  auto& work = w_.held_work_;
+  auto& work = x_.sleep.held_work;
   work.clear();
   for (const auto& h : holds) {
     if (h.second != kNone && state[h.second] == 0 && state[h.first] == kCandidate) {
@@ -248,6 +288,11 @@ inline void StepRunner::sleep_held_groups(std::span<const ContactRecord> contact
   for (std::uint32_t p = 0; p < n; ++p) {
     if (state[p] == kGrounded) asleep[p] = 1;
   }
+}
+
+void update_sleep(const StepContext& ctx, WorldImpl& w, const Order& order,
+                  std::span<const ContactRecord> contacts) {
+  SleepPass(ctx, w, order, contacts).run();
 }
 
 }  // namespace phys

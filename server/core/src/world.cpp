@@ -260,16 +260,9 @@ void World::for_each_body(const std::function<void(const BodyState&)>& visit) co
   }
 }
 
-std::size_t World::body_count() const {
-  return static_cast<std::size_t>(std::count_if(impl_->bodies.begin(), impl_->bodies.end(),
-                                                [](const Body& b) { return b.alive; }));
-}
+std::size_t World::body_count() const { return impl_->alive_count(); }
 
-std::size_t World::dynamic_body_count() const {
-  return static_cast<std::size_t>(
-      std::count_if(impl_->bodies.begin(), impl_->bodies.end(),
-                    [](const Body& b) { return b.alive && b.is_dynamic(); }));
-}
+std::size_t World::dynamic_body_count() const { return impl_->dynamic_count(); }
 
 std::size_t World::awake_body_count() const {
   return static_cast<std::size_t>(

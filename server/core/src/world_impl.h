@@ -6,17 +6,18 @@
 #include <utility>
 #include <vector>
 
-#include "contact_lanes.h"
 #include "contact_tracker.h"
 #include "physics/broadphase.h"
 #include "physics/world.h"
+#include "step_records.h"
+#include "step_scratch.h"
 
 namespace phys {
 
 // Last sub-step's contact impulses of a body toward the bodies above it in the
 // processing order (warm start), kept apart from Body so the hot loops stay small.
 // At most kWarmSlots per body. The awake bodies' entries sit in one pool, written
-// in processing order by the restitution phase and read back in that order by the
+// in processing order by the velocity solver and read back in that order by the
 // next one; a body that leaves the awake list keeps its entries in its own slot
 // (WarmImpulses) until it is awake again.
 struct WarmEntry {
@@ -49,7 +50,7 @@ struct alignas(64) Body {
   bool alive = false;
   bool awake = true;
   std::uint32_t generation = 0;
-  // Warm: the materials, read once per contact by the restitution phase (next to
+  // Warm: the materials, read once per contact by the velocity solver (next to
   // the hot fields, so that a contact does not touch a body's cold line).
   double restitution = 0.0;
   double contact_friction = 0.0;
@@ -77,36 +78,29 @@ struct alignas(64) Body {
   bool is_dynamic() const { return motion == Motion::Dynamic; }
 };
 
-// One candidate pair whose fattened boxes overlap this sub-step. `lower` is an
-// awake body; `upper` another awake body later in the processing order, or (when
-// `fixed`) a static or sleeping body.
-struct Candidate {
-  std::uint32_t lower;      // slot
-  std::uint32_t upper;      // slot
-  std::uint32_t lower_pos;  // position of `lower` in the processing order
-  std::uint32_t upper_pos;  // position of `upper` there (unused when `fixed`)
-  bool fixed;
+// The dense lists of bodies the step walks, rebuilt (body_lists.cpp) when bodies
+// are added, removed, fall asleep or wake. World state: they live across steps.
+struct BodyLists {
+  std::vector<std::uint32_t> active;  // awake dynamic bodies, in processing order
+  // How many bodies at the end of `active` joined it at the last rebuild (woken or
+  // added, in slot order) and are still to be merged into the order by height; 0
+  // when the whole list is new (its order then is slot order).
+  std::size_t joined = 0;
+  std::vector<std::uint32_t> fixed;  // static and sleeping bodies, ascending index
+  std::vector<Aabb> fixed_boxes;
+  UniformGrid fixed_grid;
+  std::size_t fixed_circles = 0;   // circles among the static and sleeping bodies
+  std::size_t fixed_sleeping = 0;  // sleeping bodies among them
 };
 
-// A pair found touching or overlapping, with everything the restitution phase's
-// iterations read about it, so that they walk one array and the two bodies only.
-struct ContactRecord {
-  std::uint32_t lower;      // slot
-  std::uint32_t upper;      // slot
-  std::uint32_t lower_pos;  // positions in the processing order (upper_pos unused when fixed)
-  std::uint32_t upper_pos;
-  Vec2 normal;  // from lower toward upper
-  double up;    // dot(normal, up): the support test of shock propagation
-  double inv_mass_lower;
-  double inv_mass_upper;   // 0 when fixed
-  double target;           // the closing velocity the contact should end with
-  double warm;             // last sub-step's impulse on this pair (warm start)
-  double warm_tangent;     // and its friction impulse
-  double mu;               // contact friction, mixed
-  double impulse;          // accumulated normal impulse
-  double tangent_impulse;  // accumulated friction impulse
-  std::uint32_t upper_generation;
-  bool fixed;  // upper is a static or sleeping body
+// The candidate pairs of the awake bodies, grouped by the lower body's position
+// in the processing order. World state: a sub-step in which every body stays
+// inside the fat box its pairs were found with keeps them (find_candidates).
+struct CandidatePairs {
+  std::vector<Candidate> list;
+  std::vector<std::uint32_t> first;  // per position: CSR offsets into list
+  std::vector<Aabb> fat_boxes;       // per position: the boxes they were found with
+  bool valid = false;                // false after the lists changed
 };
 
 class WorldImpl {
@@ -121,6 +115,20 @@ class WorldImpl {
   void wake(std::uint32_t index);
   void step(double dt);
   std::uint64_t state_hash() const;
+  std::size_t alive_count() const { return alive_count_; }
+  std::size_t dynamic_count() const { return dynamic_count_; }
+
+  // The body lists as the step needs them: rebuilt first if bodies fell asleep,
+  // woke, or were added, removed or moved by hand.
+  const BodyLists& current_lists() {
+    if (lists_dirty_) rebuild_lists();
+    return lists;
+  }
+  // A body update_sleep put to sleep: the lists change at the next rebuild.
+  void fell_asleep(std::uint32_t slot) {
+    changed_slots_.push_back(slot);
+    lists_dirty_ = true;
+  }
 
   WorldSettings settings;
   StageCounters counters;
@@ -148,89 +156,35 @@ class WorldImpl {
     }
     return nullptr;
   }
+  BodyLists lists;
+  CandidatePairs candidates;
+  StepScratch scratch;
 
  private:
-  friend class StepRunner;
   friend class World;
 
   BodyDefError check(const BodyDef& def) const;
-  // body_lists.cpp: the dense lists below, after bodies fell asleep, woke, or were
+  // body_lists.cpp: the lists above, after bodies fell asleep, woke, or were
   // added, removed or moved by hand.
   void rebuild_lists();
   void rebuild_fixed_and_joined();
   void update_fixed_and_joined();
-  void fell_asleep(std::uint32_t slot) {
-    changed_slots_.push_back(slot);
-    lists_dirty_ = true;
-  }
 
   std::vector<std::uint32_t> free_slots_;  // LIFO: deterministic reuse
   std::size_t alive_count_ = 0;
-  std::size_t dynamic_count_ = 0;
+  std::size_t dynamic_count_ = 0;  // bodies never change their motion once made
 
-  // Dense lists, rebuilt when `lists_dirty_`.
   bool lists_dirty_ = true;
   // Whether the rebuild must walk every body (a body was added, removed or moved by
   // hand); otherwise only the bodies that fell asleep or woke since, in
   // changed_slots_, can have changed lists (a settling pile: some every step).
   bool rebuild_all_ = true;
   std::vector<std::uint32_t> changed_slots_;
-  std::vector<std::uint32_t> active_;  // awake dynamic bodies, in processing order
-  // How many bodies at the end of active_ joined it at the last rebuild (woken or
-  // added, in slot order) and are still to be merged into the order by height; 0
-  // when the whole list is new (its order then is slot order).
-  std::size_t joined_ = 0;
-  std::vector<std::uint32_t> previous_active_;  // rebuild_lists' scratch
-  std::vector<std::uint8_t> listed_;  // per slot: kept in active_ (scratch, all 0 between uses)
-  std::vector<std::uint32_t> fixed_;  // static and sleeping bodies, ascending index
-  UniformGrid fixed_grid_;
-  UniformGrid active_grid_;
-  std::vector<Aabb> fixed_boxes_;
-  std::vector<std::uint32_t> merged_fixed_;  // update_fixed_and_joined's scratch
+  // rebuild_lists' scratch.
+  std::vector<std::uint32_t> previous_active_;
+  std::vector<std::uint8_t> listed_;  // per slot: kept in active (all 0 between uses)
+  std::vector<std::uint32_t> merged_fixed_;
   std::vector<Aabb> merged_fixed_boxes_;
-  std::size_t fixed_circles_ = 0;   // circles among the static and sleeping bodies
-  std::size_t fixed_sleeping_ = 0;  // sleeping bodies among them
-
-  // Per-step scratch, kept to avoid allocating every step.
-  std::vector<Aabb> fat_boxes_;       // the boxes the current candidates were found with
-  std::vector<Aabb> next_fat_boxes_;  // this sub-step's, should they be found again
-  bool candidates_valid_ = false;
-  std::vector<BodyPair> active_pairs_;
-  std::vector<std::uint32_t> overlaps_;
-  std::vector<Candidate> candidates_;
-  std::vector<std::uint32_t> first_candidate_;       // per active position: CSR offsets
-  std::vector<ContactRecord> contacts_;              // grow-only; the step counts those in use
-  std::vector<ContactWeights> contact_weights_;      // shock propagation's, per contact
-  ContactLanes contact_lanes_;                       // the frictionless iterations' lanes
-  std::vector<std::uint32_t> contact_of_candidate_;  // kNone, or marked a contact
-  std::vector<Vec2> contact_normal_;                 // per candidate, when marked
-  std::vector<std::uint8_t> supported_;              // per position in the processing order
-  std::vector<Vec2> step_velocity_;                  // velocity at the end of the free motion
-  std::vector<Vec2> solver_velocity_;            // the restitution phase's velocities, by position
-  std::vector<Vec2> step_displacement_;          // free-motion displacement this sub-step
-  std::vector<std::uint8_t> contact_near_miss_;  // per candidate, when marked: a near miss
-  std::vector<double> contact_gap_;              // per candidate, when a near miss: its gap
-  std::vector<Vec2> velocity_before_contacts_;   // per position, when support is held
-  std::vector<std::uint8_t> in_contact_;         // per position
-  std::vector<double> support_impulse_;          // per position: what its supports pushed up
-  std::vector<double> carried_impulse_;          // per position: what rests on it pressed down
-  std::vector<Vec2> step_start_;                 // position at the start of the sub-step (friction)
-  std::vector<std::uint32_t> to_wake_;
-  std::vector<std::uint32_t> near_candidates_;  // candidates worth another position pass
-  std::vector<double> sort_keys_;
-  std::vector<std::pair<double, std::uint32_t>> keyed_order_;  // merging joined bodies
-  std::vector<std::uint8_t> sleep_ready_;
-  std::vector<std::uint8_t> still_ready_;  // per position: still for sleep_time
-  std::vector<std::uint32_t> island_parent_;
-  std::vector<std::uint8_t> goes_to_sleep_;    // per position, this sub-step's verdict
-  std::vector<std::uint32_t> first_support_;   // per position: CSR offsets into supporters_
-  std::vector<std::uint32_t> supporters_;      // positions of what each body rests on
-  std::vector<std::uint32_t> support_cursor_;  // filling supporters_
-  std::vector<std::uint8_t> held_state_;       // sleep_held_groups: per position
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> holds_;  // (held, holder) positions
-  std::vector<std::uint32_t> held_start_;  // per holder: CSR offsets into held_list_
-  std::vector<std::uint32_t> held_list_;   // the bodies each holds
-  std::vector<std::uint32_t> held_work_;   // the walks' stack
 };
 
 }  // namespace phys

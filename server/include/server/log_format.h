@@ -3,7 +3,6 @@
 // line for a log collector: {"time","level","logger","message"}, time in UTC with
 // microseconds. docs/SERVER.md, "Logs".
 #include <string>
-#include <string_view>
 
 namespace server {
 
@@ -11,9 +10,5 @@ enum class LogFormat { Text, Json };
 
 // Makes the default spdlog logger write to stderr in `format` under `name`.
 void use_stderr_log(const std::string& name, LogFormat format);
-
-// `text` as the inside of a JSON string: quotes, backslashes and control
-// characters escaped; other bytes (UTF-8 included) as they are.
-std::string json_escaped(std::string_view text);
 
 }  // namespace server

@@ -22,8 +22,4 @@ std::optional<phys::Vec2> find_spawn_position(const scene::SceneDef& scene,
                                               const phys::World& world,
                                               std::optional<std::uint32_t> seat = std::nullopt);
 
-// The axis-aligned box a body occupies.
-phys::Aabb bounds_of(const phys::BodyState& body);
-phys::Aabb bounds_of(const phys::BodyDef& body, phys::Vec2 at);
-
 }  // namespace server

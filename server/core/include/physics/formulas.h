@@ -166,18 +166,11 @@ inline Contact collide_circle_box(Vec2 center, double radius, const Aabb& box) {
 
 // The restitution a contact gets: none when it closes slower than rest_speed (a
 // resting contact, which then comes to rest exactly), else the material's. The one
-// rule for swept bounces, contact impulses and apply_restitution alike.
+// rule for swept bounces and contact impulses alike.
 constexpr double effective_restitution(double approach_speed, double restitution,
                                        double rest_speed) {
   return approach_speed < rest_speed ? 0.0 : restitution;
 }
-
-// Restitution of one contact along unit normal n (from body 1 toward body 2).
-// inv_mass 0 is a static body. If the bodies approach, the normal component of the
-// relative velocity is reflected and scaled by e (or zeroed below rest_speed), the
-// impulse split by inverse mass. Returns false when nothing changed.
-bool apply_restitution(Vec2& v1, double inv_mass1, Vec2& v2, double inv_mass2, Vec2 n,
-                       double restitution, double rest_speed);
 
 // Material mixing in one place, as Box2D does: restitution max(a, b), contact
 // friction sqrt(a * b).

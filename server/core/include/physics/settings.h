@@ -64,6 +64,11 @@ struct WorldSettings {
   // The largest radius or half extent a body may have, and most bodies at once.
   double max_body_size = 1.0e5;
   std::uint32_t max_bodies = 1u << 20;
+  // Without contact friction, the velocity solver's iterations run two contacts at
+  // a time in SIMD lanes where the build has them (SSE2: every x86-64 build), with
+  // results equal bit for bit to the one-contact-at-a-time pass that false forces
+  // (and that builds without SSE2 always run). A setting for tests and benchmarks.
+  bool simd_contact_lanes = true;
   // Time each phase of the step into StepProfile (costs two clock reads a phase).
   bool profile = false;
 };

@@ -20,7 +20,7 @@ struct StageCounters {
   std::uint64_t swept_hits = 0;         // time-of-impact stops against static bodies
   std::uint64_t friction_holds = 0;     // contacts held in place by static friction
   std::uint64_t broadphase_reuses = 0;  // sub-steps that reused the last candidate pairs
-  std::uint64_t restitution_passes = 0;
+  std::uint64_t velocity_solves = 0;    // sub-steps whose velocity solver had contacts
   std::uint64_t sleeping_bodies_skipped = 0;
   std::uint64_t wakes = 0;         // sleeping bodies woken by a hit
   std::uint64_t speed_clamps = 0;  // velocities clamped to max_speed
@@ -33,13 +33,18 @@ struct StageCounters {
   bool operator==(const StageCounters&) const = default;
 };
 
-// Seconds spent in each phase of the last step() (all zero unless profiling is on).
+// Seconds spent in each phase of the last step(), over all its sub-steps (all zero
+// unless WorldSettings::profile is on). The phases are the sub-step's recipe
+// (server/core/src/step.cpp); total is the whole step, the rebuild of the body
+// lists included.
 struct StepProfile {
-  double integrate = 0.0;    // friction, acceleration, gravity, moves
-  double broadphase = 0.0;   // grid build and candidate pairs
-  double narrowphase = 0.0;  // exact overlap and swept tests (and contact events' touch tests)
-  double resolve = 0.0;      // penetration resolution and restitution
-  double sleep = 0.0;        // sleep and wake bookkeeping
+  double order_and_integrate = 0.0;  // the processing order; friction, acceleration, gravity
+  double candidates = 0.0;           // the broadphase: fat boxes, grid, candidate pairs
+  double moves = 0.0;                // the per-axis moves, swept against static bodies
+  double position_passes = 0.0;      // penetration resolution, contacts and near misses
+  double contact_events = 0.0;       // touching pairs and events (only when they are on)
+  double velocity_solver = 0.0;      // restitution, friction, warm start, held support
+  double bounds_and_sleep = 0.0;     // the world's bounds, waking what was hit, sleep
   double total = 0.0;
 };
 

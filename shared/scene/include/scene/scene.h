@@ -52,8 +52,20 @@ inline constexpr std::int64_t kMaxSceneBodies = 1 << 20;
 // Positions are refused beyond this distance from the origin on either axis: far
 // out, a double still resolves about 2e-9 m, but nothing we test goes there.
 inline constexpr double kMaxCoordinate = 1.0e7;
-// The tick rate is in (0, kMaxTickRate] and steps per frame in [1, kMaxStepsPerFrame].
+// Ticks per second, wherever a rate comes from (a scene, physics-server's --tick-rate,
+// a recording) and wherever it is stepped (server::Simulation): in [kMinTickRate,
+// kMaxTickRate]. The floor keeps dt = 1 / rate finite (a denormal rate would make it
+// infinite); the ceiling is a 1 ms tick.
+inline constexpr double kMinTickRate = 0.001;
 inline constexpr double kMaxTickRate = 1000.0;
+// False for NaN too.
+constexpr bool is_valid_tick_rate(double rate) {
+  return rate >= kMinTickRate && rate <= kMaxTickRate;
+}
+// "" for a valid rate, else "tick rate must be in [0.001, 1000] ticks per second,
+// got R": every place that refuses a rate says it in these words.
+std::string tick_rate_problem(double rate);
+// Steps per frame are in [1, kMaxStepsPerFrame].
 inline constexpr std::int64_t kMaxStepsPerFrame = 1000;
 
 // Reads and checks a .textproto scene file.

@@ -1,8 +1,8 @@
 #pragma once
 // A client's view settings (Hello.view): the defaults, the ranges, and the one
 // function that turns a ViewRequest into settings or says which field is wrong.
-// The server applies it to every Hello; the client library to its own config, so
-// that a bad setting is reported before a connection is made.
+// The server applies it to every Hello; a client's bad setting is reported by the
+// server's refusal (ERROR_INVALID_VIEW), which names the field.
 #include <cstdint>
 #include <string>
 

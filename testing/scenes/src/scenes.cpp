@@ -1,13 +1,13 @@
-#include "scenes.h"
+#include "scenes/scenes.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "rain.h"
+#include "scenes/random.h"
 
-namespace bench {
+namespace scenes {
 namespace {
 
 constexpr double kWallThickness = 1.0;
@@ -80,19 +80,6 @@ double lattice_top(int count, double left, double right, double pitch) {
 }
 
 }  // namespace
-
-std::uint64_t SplitMix64::next() {
-  std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
-double SplitMix64::uniform(double lo, double hi) {
-  // The top 53 bits make a double in [0, 1) exactly.
-  const double unit = static_cast<double>(next() >> 11) * 0x1.0p-53;
-  return lo + (hi - lo) * unit;
-}
 
 SceneSpec projectile_scene(double friction_rate) {
   SceneSpec scene;
@@ -181,6 +168,31 @@ SceneSpec rain_scene(int count, int steps, int first_window, int last_window) {
   return scene;
 }
 
+SceneSpec rained_circles_scene(const RainedCircles& rain) {
+  SceneSpec scene;
+  char name[80];
+  std::snprintf(name, sizeof name, "rained-%d-w%g-mu%g%s", rain.circles, rain.width, rain.mu,
+                rain.per_row > 0 ? "-centred" : "");
+  scene.name = name;
+  const double half = rain.width / 2.0;
+  constexpr double wall_top = 500.0;
+  add_container(scene, -half, half, wall_top, false);
+  const int per_row =
+      rain.per_row > 0 ? rain.per_row : std::max(1, static_cast<int>(rain.width / 1.2));
+  const double first_x = rain.per_row > 0 ? 0.6 - 0.6 * per_row : -half + 0.6;
+  Rain random;
+  for (int n = 0; n < rain.circles; ++n) {
+    const double nudge =
+        rain.per_row > 0 ? random.uniform(-0.1, 0.1) : 0.1 * random.uniform(-1.0, 1.0);
+    BodySpec circle =
+        dynamic_circle({first_x + 1.2 * (n % per_row) + nudge, 1.0 + 1.2 * (n / per_row)}, 0.5);
+    circle.velocity = {random.uniform(-1.0, 1.0), 0.0};
+    scene.bodies.push_back(circle);
+  }
+  for (BodySpec& body : scene.bodies) body.contact_friction = rain.mu;
+  return scene;
+}
+
 std::string pile_rain_scene_name(int count, double mu) {
   char name[64];
   std::snprintf(name, sizeof name, "pile-rain-%d-mu%g", count, mu);
@@ -188,25 +200,12 @@ std::string pile_rain_scene_name(int count, double mu) {
 }
 
 SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window) {
-  SceneSpec scene;
+  SceneSpec scene = rained_circles_scene(circle_pile(count, mu));
   scene.name = pile_rain_scene_name(count, mu);
   scene.steps = steps;
   scene.first_window = first_window;
   scene.last_window = last_window;
   scene.sample_every = 30;
-  constexpr double inner = 50.0;  // the walls' inner faces at x = +-50
-  constexpr double wall_top = 500.0;
-  constexpr int per_row = 80;
-  add_container(scene, -inner, inner, wall_top, false);
-  phys::testing::Rain rain;
-  for (int n = 0; n < count; ++n) {
-    const phys::Vec2 centre{-47.4 + 1.2 * (n % per_row) + rain.uniform(-0.1, 0.1),
-                            1.0 + 1.2 * (n / per_row)};
-    BodySpec circle = dynamic_circle(centre, 0.5);
-    circle.velocity = {rain.uniform(-1.0, 1.0), 0.0};
-    scene.bodies.push_back(circle);
-  }
-  for (BodySpec& body : scene.bodies) body.contact_friction = mu;
   return scene;
 }
 
@@ -264,4 +263,4 @@ std::vector<phys::Aabb> random_boxes(int count, double density, std::uint64_t se
   return boxes;
 }
 
-}  // namespace bench
+}  // namespace scenes

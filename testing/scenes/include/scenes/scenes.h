@@ -1,15 +1,19 @@
 #pragma once
-// The named scenes of the report (docs/ACCURACY.md) and the microbenchmark's pile,
-// built as engine-independent SceneSpecs. Every random choice comes from a fixed seed, so a
-// scene is the same on every run and for every engine.
+// The generated scenes, as engine-independent SceneSpecs: the named scenes of the
+// accuracy report (docs/ACCURACY.md), the microbenchmark's pile, and the rained piles
+// of circles that the stability tests, physics-settle and the report share. Every
+// random choice comes from a fixed seed, so a scene is the same on every run and for
+// every engine; tests/unit/scene_library_test.cpp holds each to its bodies and to
+// its state after a few steps.
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "physics/vec2.h"
-#include "scene_spec.h"
+#include "scenes/random.h"
+#include "scenes/scene_spec.h"
 
-namespace bench {
+namespace scenes {
 
 // One circle in free flight from the origin, v0 = (5, 10), input acceleration
 // (3, 2) plus gravity, friction rate k on both axes; 2 s. Closed form exists.
@@ -39,11 +43,30 @@ SceneSpec pyramid_scene(int base, int steps);
 // (floor and two walls), falling from rest.
 SceneSpec rain_scene(int count, int steps, int first_window, int last_window);
 
-// The 16,000-circle pile as tests/stability/pile_test.cpp builds it: `count` circles of radius
-// 0.5 rained into a container 100 m wide with walls 500 m high, 80 to a row 1.2 m
-// apart from 1 m up, each nudged by up to 0.1 m and thrown sideways at up to 1 m/s
-// (so that they tumble into a pile rather than land as columns), by the tests' own
-// generator. Every body, walls included, has contact friction `mu`.
+// Circles of radius 0.5 rained into an open container: a floor whose top is y = 0 and
+// two walls 500 m high, 1 m thick, every body with contact friction `mu`. The
+// circles start in rows 1.2 m apart from 1 m up, each nudged sideways by up to 0.1 m
+// and thrown sideways at up to 1 m/s (so that they tumble into a pile rather than
+// land as columns), from one Rain generator: per circle the nudge, then the speed.
+struct RainedCircles {
+  double width = 20.0;  // the container's inside, x in [-width/2, width/2]
+  int circles = 300;
+  double mu = 0.5;
+  // 0: rows of as many as fit (width / 1.2), from 0.6 m off the left wall, the
+  // layout of the small and deep piles (tests/stability/resting_test.cpp);
+  // N: rows of N, centred, the layout of the 16,000-circle pile. The two layouts
+  // draw the same numbers but scale the nudge differently (0.1 * U(-1, 1) against
+  // U(-0.1, 0.1)), which rounds differently; each is kept as the tests used it.
+  int per_row = 0;
+};
+SceneSpec rained_circles_scene(const RainedCircles& rain);
+
+// The 16,000-circle pile (tests/stability/pile_test.cpp): `count` circles, 80 to a
+// row, in a container 100 m wide; 16,000 make a pile about 40 rows deep.
+inline RainedCircles circle_pile(int count, double mu) { return {100.0, count, mu, 80}; }
+
+// circle_pile as the report runs it: named pile-rain-<count>-mu<mu>, with its steps,
+// timing windows, and the state read every 30 steps.
 SceneSpec pile_rain_scene(int count, double mu, int steps, int first_window, int last_window);
 std::string pile_rain_scene_name(int count, double mu);
 
@@ -61,15 +84,4 @@ SceneSpec stages_scene(StageVariant variant, int steps);
 // that holds them at about `density` of its area.
 std::vector<phys::Aabb> random_boxes(int count, double density, std::uint64_t seed);
 
-// splitmix64: a tiny generator whose output is fixed by the seed on every platform.
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next();
-  double uniform(double lo, double hi);  // [lo, hi)
-
- private:
-  std::uint64_t state_;
-};
-
-}  // namespace bench
+}  // namespace scenes

@@ -1,56 +1,24 @@
 // The playout buffer with a fake clock: snapshots of known trajectories arrive with
-// scripted jitter, loss and bad data; frames are taken at a display's rate.
-#include "client/playout_buffer.h"
-
+// scripted jitter, loss and stalls; frames are taken at a display's rate and must
+// follow the trajectories smoothly, with the lag the buffer states.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <vector>
+
+#include "client/playout_buffer.h"
+#include "playout_test_support.h"
 
 namespace {
 
+using namespace playout_test;
 using client::PlayoutBuffer;
 using client::PlayoutFrame;
 using client::PlayoutSettings;
 using client::PlayoutStatus;
 using client::PushResult;
-
-constexpr double kTickRate = 60.0;
-constexpr double kLatency = 0.050;      // the fastest transit, s
-constexpr double kFrame = 1.0 / 144.0;  // the display's frame time, s
-constexpr std::uint64_t kLinear = 1;    // moves at a constant velocity
-constexpr std::uint64_t kCircle = 2;    // goes round a circle
-constexpr std::uint64_t kResting = 3;   // never moves
-const client::Vec2 kVelocity{3.0, -1.0};
-constexpr double kRadius = 1.0;
-constexpr double kOmega = 2.0;  // rad/s: 2 m/s on the circle
-
-client::Vec2 linear_at(double t) { return {1.0 + kVelocity.x * t, 2.0 + kVelocity.y * t}; }
-
-client::Snapshot snapshot_at(std::uint64_t tick) {
-  const double t = static_cast<double>(tick) / kTickRate;
-  client::Snapshot s;
-  s.tick = tick;
-  s.bodies.push_back({kLinear, linear_at(t), kVelocity});
-  s.bodies.push_back(
-      {kCircle,
-       {kRadius * std::cos(kOmega * t), kRadius * std::sin(kOmega * t)},
-       {-kRadius * kOmega * std::sin(kOmega * t), kRadius * kOmega * std::cos(kOmega * t)}});
-  s.bodies.push_back({kResting, {5.0, 0.5}, {0.0, 0.0}});
-  return s;
-}
-
-const client::PlayoutBody* body(const PlayoutFrame& frame, std::uint64_t id) {
-  for (const auto& b : frame.bodies)
-    if (b.body_id == id) return &b;
-  return nullptr;
-}
-
-double distance(const client::Vec2& a, const client::Vec2& b) {
-  return std::hypot(a.x - b.x, a.y - b.y);
-}
 
 // A fixed sequence in [0, 1): the scripted jitter, the same on every run.
 class Script {
@@ -276,128 +244,6 @@ TEST(PlayoutBuffer, AGapBetweenSnapshotsIsCarriedAtTheEarlierVelocity) {
   }
   const PlayoutFrame& end = buffer.state_at(2.0);
   EXPECT_NEAR(end.bodies[0].position.x, 0.1, 1e-12);
-}
-
-TEST(PlayoutBuffer, StillBodiesAreTheOnesUnchangedInTheTwoNewestSnapshots) {
-  PlayoutBuffer buffer(PlayoutSettings{});
-  ASSERT_EQ(buffer.push(snapshot_at(1), 1.0), PushResult::Accepted);
-  ASSERT_EQ(buffer.push(snapshot_at(2), 1.02), PushResult::Accepted);
-  const PlayoutFrame& frame = buffer.state_at(1.5);
-  EXPECT_TRUE(body(frame, kResting)->still);
-  EXPECT_FALSE(body(frame, kLinear)->still);
-  EXPECT_FALSE(body(frame, kCircle)->still);
-}
-
-TEST(PlayoutBuffer, BodiesThatLeaveStayUntilTheLaterSnapshotAndNewOnesAppearAtIt) {
-  PlayoutSettings settings;
-  settings.send_intervals = 0.0;
-  PlayoutBuffer buffer(settings);
-  client::Snapshot a;
-  a.tick = 60;
-  a.bodies = {{1, {0, 0}, {0, 0}}, {2, {1, 1}, {0, 0}}};
-  client::Snapshot b;
-  b.tick = 61;
-  b.bodies = {{1, {0, 0}, {0, 0}}, {3, {2, 2}, {0, 0}}};
-  ASSERT_EQ(buffer.push(a, 1.0), PushResult::Accepted);
-  ASSERT_EQ(buffer.push(b, 1.0 + 1.0 / kTickRate), PushResult::Accepted);
-  const PlayoutFrame& between = buffer.state_at(1.0 + 0.5 / kTickRate);
-  ASSERT_EQ(between.bodies.size(), 2u);
-  EXPECT_EQ(between.bodies[0].body_id, 1u);
-  EXPECT_EQ(between.bodies[1].body_id, 2u);
-  const PlayoutFrame& at_b = buffer.state_at(1.0 + 1.0 / kTickRate + 1e-6);
-  ASSERT_EQ(at_b.bodies.size(), 2u);
-  EXPECT_EQ(at_b.bodies[1].body_id, 3u);
-}
-
-TEST(PlayoutBuffer, RefusesBadSnapshotsAndKeepsServing) {
-  PlayoutBuffer buffer(PlayoutSettings{});
-  EXPECT_EQ(buffer.state_at(0.0).status, PlayoutStatus::Empty);
-  EXPECT_TRUE(buffer.state_at(0.0).bodies.empty());
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const double inf = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(buffer.push(snapshot_at(10), nan), PushResult::BadTime);
-  EXPECT_EQ(buffer.push(snapshot_at(10), inf), PushResult::BadTime);
-  client::Snapshot broken = snapshot_at(10);
-  broken.bodies[1].position.x = nan;
-  EXPECT_EQ(buffer.push(broken, 1.0), PushResult::BadState);
-  broken = snapshot_at(10);
-  broken.bodies[0].velocity.y = -inf;
-  EXPECT_EQ(buffer.push(broken, 1.0), PushResult::BadState);
-  EXPECT_EQ(buffer.size(), 0u);
-
-  ASSERT_EQ(buffer.push(snapshot_at(10), 1.0), PushResult::Accepted);
-  EXPECT_EQ(buffer.push(snapshot_at(10), 1.1), PushResult::Stale);  // duplicate tick
-  EXPECT_EQ(buffer.push(snapshot_at(9), 1.1), PushResult::Stale);   // older tick
-  EXPECT_EQ(buffer.size(), 1u);
-  // An arrival before the previous one is taken as the previous one.
-  ASSERT_EQ(buffer.push(snapshot_at(11), 0.5), PushResult::Accepted);
-  EXPECT_EQ(buffer.stats().clock_backwards, 1u);
-  EXPECT_NEAR(buffer.offset(), 1.0 - 11.0 / kTickRate, 1e-12);
-  const auto& stats = buffer.stats();
-  EXPECT_EQ(stats.bad_time, 2u);
-  EXPECT_EQ(stats.bad_state, 2u);
-  EXPECT_EQ(stats.stale, 2u);
-  EXPECT_EQ(stats.accepted, 2u);
-}
-
-TEST(PlayoutBuffer, RenderTimeGoingBackOrNaNNeverMovesTheShownTimeBack) {
-  PlayoutBuffer buffer(PlayoutSettings{});
-  for (std::uint64_t tick = 1; tick <= 120; ++tick)
-    ASSERT_EQ(buffer.push(snapshot_at(tick), static_cast<double>(tick) / kTickRate + kLatency),
-              PushResult::Accepted);
-  const double shown = buffer.state_at(1.5).server_time;
-  EXPECT_EQ(buffer.state_at(1.0).server_time, shown);
-  EXPECT_EQ(buffer.state_at(std::numeric_limits<double>::quiet_NaN()).server_time, shown);
-  EXPECT_EQ(buffer.state_at(-std::numeric_limits<double>::infinity()).server_time, shown);
-  EXPECT_EQ(buffer.stats().clock_backwards, 3u);
-  EXPECT_GT(buffer.state_at(1.51).server_time, shown);
-}
-
-TEST(PlayoutBuffer, AHugeGapStartsAgainFromTheNewSnapshot) {
-  PlayoutBuffer buffer(PlayoutSettings{});
-  for (std::uint64_t tick = 1; tick <= 30; ++tick)
-    ASSERT_EQ(buffer.push(snapshot_at(tick), static_cast<double>(tick) / kTickRate + kLatency),
-              PushResult::Accepted);
-  (void)buffer.state_at(0.6);
-  // A tick 2^40 later (a server restarted or a corrupt tick).
-  const std::uint64_t far = (1ull << 40);
-  EXPECT_EQ(buffer.push(snapshot_at(far), 0.7), PushResult::Reset);
-  EXPECT_EQ(buffer.size(), 1u);
-  EXPECT_EQ(buffer.stats().resets, 1u);
-  EXPECT_EQ(buffer.jitter(), 0.0);
-  const PlayoutFrame& frame = buffer.state_at(0.71);
-  EXPECT_EQ(frame.newest_tick, far);
-  EXPECT_EQ(frame.bodies.size(), 3u);
-  EXPECT_NEAR(frame.lag, buffer.delay(), 1e-6);
-}
-
-TEST(PlayoutBuffer, HoldsAtMostItsCapacity) {
-  PlayoutSettings settings;
-  settings.capacity = 16;
-  PlayoutBuffer buffer(settings);
-  for (std::uint64_t tick = 1; tick <= 1000; ++tick)
-    ASSERT_EQ(buffer.push(snapshot_at(tick), static_cast<double>(tick) / kTickRate),
-              PushResult::Accepted);
-  EXPECT_EQ(buffer.size(), 16u);
-  EXPECT_EQ(buffer.stats().dropped, 1000u - 16u);
-  EXPECT_EQ(buffer.newest()->tick, 1000u);
-}
-
-TEST(PlayoutBuffer, SettingsOutOfRangeAreRefusedWithTheirName) {
-  PlayoutSettings settings;
-  settings.tick_rate = 0.0;
-  EXPECT_NE(settings.validate().find("tick_rate"), std::string::npos);
-  EXPECT_THROW(PlayoutBuffer{settings}, std::invalid_argument);
-  settings = PlayoutSettings{};
-  settings.capacity = 1;
-  EXPECT_NE(settings.validate().find("capacity"), std::string::npos);
-  settings = PlayoutSettings{};
-  settings.max_delay = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(settings.validate().find("max_delay"), std::string::npos);
-  settings = PlayoutSettings{};
-  settings.slew = 2.0;
-  EXPECT_NE(settings.validate().find("slew"), std::string::npos);
-  EXPECT_TRUE(PlayoutSettings{}.validate().empty());
 }
 
 }  // namespace

@@ -1,0 +1,48 @@
+# Runs physics-netbench the way a user does: each bad flag exits 2 with a message
+# that says what was wrong, and nothing aborts; a short run with one bot prints its
+# table row and writes its CSV.
+#   cmake -DNETBENCH=path/to/physics-netbench -DWORK=dir -P netbench_cli_test.cmake
+
+function(expect_usage_error what expected_text)
+  execute_process(COMMAND ${NETBENCH} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err TIMEOUT 30)
+  if(NOT rc EQUAL 2)
+    message(FATAL_ERROR "${what}: exit ${rc}, expected 2\n${out}${err}")
+  endif()
+  if(NOT "${out}${err}" MATCHES "${expected_text}")
+    message(FATAL_ERROR "${what}: the message does not say '${expected_text}':\n${out}${err}")
+  endif()
+  if("${out}${err}" MATCHES "terminate called|Aborted")
+    message(FATAL_ERROR "${what}: aborted\n${out}${err}")
+  endif()
+endfunction()
+
+expect_usage_error("--tick-rate -5" "not in range" --tick-rate -5)
+expect_usage_error("--tick-rate abc" "Failed parsing abc" --tick-rate abc)
+expect_usage_error("--bots 0" "--bots" --bots 0)
+expect_usage_error("--bots -3" "--bots" --bots -3)
+expect_usage_error("--duration -1" "--duration" --duration -1)
+expect_usage_error("--encodings zip" "--encodings" --encodings zip)
+expect_usage_error("--scenes missing" "missing.textproto" --scenes ${WORK}/missing.textproto)
+
+# One bot on the built-in scene for a fraction of a second: the row says it joined,
+# and the CSV has the header and that row.
+set(csv ${WORK}/netbench-cli.csv)
+file(REMOVE ${csv})
+execute_process(COMMAND ${NETBENCH} --bots 1 --duration 0.3 --encodings full --csv ${csv}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "physics-netbench --bots 1 failed (${rc}):\n${out}${err}")
+endif()
+if(NOT out MATCHES "\\| [^|]+ \\| full \\| 1 \\(1\\) \\|")
+  message(FATAL_ERROR "physics-netbench: no row of one joined bot:\n${out}${err}")
+endif()
+file(STRINGS ${csv} rows)
+list(LENGTH rows count)
+if(NOT count EQUAL 2)
+  message(FATAL_ERROR "physics-netbench --csv: ${count} lines, expected a header and one row")
+endif()
+list(GET rows 0 header)
+if(NOT header MATCHES "^scene,encoding,still,clients_asked,clients_joined,")
+  message(FATAL_ERROR "physics-netbench --csv: unexpected header '${header}'")
+endif()

@@ -1,0 +1,170 @@
+// Connections: accepting (and refusing at accept, by address), the caps on
+// connections still handshaking, the log's per-cause limits, and a session's close.
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <string>
+
+#include "client_ids.h"
+#include "handshake.h"
+#include "server_impl.h"
+#include "wire/messages.h"
+
+namespace server {
+
+void Server::Impl::do_accept() {
+  acceptor_.async_accept([this](std::error_code ec, asio::ip::tcp::socket socket) {
+    if (stopping_ || ec == asio::error::operation_aborted) return;
+    if (ec) {
+      // Out of descriptors, typically: wait a little rather than spin on the error.
+      spdlog::warn("accept failed: {}", ec.message());
+      accept_retry_timer_.expires_after(std::chrono::milliseconds(100));
+      accept_retry_timer_.async_wait([this](std::error_code wait_error) {
+        if (!wait_error && !stopping_) do_accept();
+      });
+      return;
+    }
+    update_stats([](ServerStats& s) { ++s.connections_accepted; });
+    std::error_code endpoint_error;
+    const auto remote = socket.remote_endpoint(endpoint_error);
+    if (!endpoint_error) {
+      const std::string address = remote.address().to_string();
+      const AddressLimits::Decision decision =
+          address_limits_.on_accept(address, std::chrono::steady_clock::now());
+      if (decision.verdict != AddressLimits::Verdict::Allowed) {
+        const auto retry =
+            std::chrono::ceil<std::chrono::milliseconds>(decision.retry_after).count();
+        refuse_at_accept(socket, decision.verdict == AddressLimits::Verdict::BackingOff
+                                     ? "too many failed Hellos from " + address + "; retry in " +
+                                           std::to_string(retry) + " ms"
+                                     : "too many connections from " + address + "; retry in " +
+                                           std::to_string(retry) + " ms");
+        do_accept();
+        return;
+      }
+    }
+    const std::uint32_t id = take_free_id(
+        next_client_id_, [this](std::uint32_t live) { return sessions_.count(live) > 0; });
+    auto session = std::make_shared<Session>(std::move(socket), id, *this, limits_);
+    sessions_.emplace(id, session);
+    publish_connection_counts();
+    if (log_admits("connection")) spdlog::info("connection {} from {}", id, session->peer());
+    session->start();
+    refuse_if_too_many_pending(*session);
+    do_accept();
+  });
+}
+
+// Connections that have not joined have caps of their own, in all and per address,
+// so that a stranger's silent sockets never take a player's seat (and each is closed
+// at the handshake deadline anyway).
+void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
+  std::size_t pending = 0;
+  std::size_t from_address = 0;
+  for (const auto& [id, session] : sessions_) {
+    if (session->joined() || session->closing()) continue;
+    ++pending;
+    if (session->address() == fresh.address()) ++from_address;
+  }
+  if (pending > static_cast<std::size_t>(config_.max_pending)) {
+    fresh.close_with_error(
+        physics::wire::ERROR_SERVER_FULL,
+        "too many connections still handshaking (" + std::to_string(config_.max_pending) + ")",
+        DropReason::TooManyPending);
+  } else if (from_address > static_cast<std::size_t>(config_.max_pending_per_address)) {
+    fresh.close_with_error(physics::wire::ERROR_SERVER_FULL,
+                           "too many connections still handshaking from " + fresh.address() + " (" +
+                               std::to_string(config_.max_pending_per_address) + ")",
+                           DropReason::TooManyPending);
+  }
+}
+
+void Server::Impl::refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text) {
+  update_stats([](ServerStats& s) { ++s.dropped[DropReason::AddressLimited]; });
+  if (log_admits("refused at accept")) spdlog::info("refused a connection: {}", text);
+  std::error_code ignored;
+  socket.non_blocking(true, ignored);
+  const std::string frame =
+      wire::encode_frame(wire::make_error(physics::wire::ERROR_RATE_LIMITED, text, true));
+  socket.write_some(asio::buffer(frame), ignored);
+  socket.shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
+  socket.close(ignored);
+}
+
+bool Server::Impl::log_admits(const char* cause) {
+  if (log_limiter_.admit(cause, std::chrono::steady_clock::now())) return true;
+  update_stats([](ServerStats& s) { ++s.suppressed_log_lines; });
+  return false;
+}
+
+void Server::Impl::on_throttled(Session& session) {
+  update_stats([](ServerStats& s) { ++s.throttled_reads; });
+  if (log_admits("over its rate")) {
+    spdlog::info("connection {} ({}) is over its byte or message rate: reading paused",
+                 session.id(), session.peer());
+  }
+}
+
+void Server::Impl::on_handler_failed(Session& session, const char* what) {
+  if (log_admits("handler failed")) {
+    spdlog::error("handling a message of connection {} ({}) failed: {}; closing it", session.id(),
+                  session.peer(), what);
+  }
+}
+
+void Server::Impl::on_closed(Session& session, DropReason reason) {
+  const std::uint32_t id = session.id();
+  feeds_.leave(id);  // a subscription made by a Hello that then failed, too
+  if (!session.joined() && is_failed_hello(reason)) {
+    address_limits_.on_failed_hello(session.address(), std::chrono::steady_clock::now());
+    update_stats([](ServerStats& s) { ++s.failed_hellos; });
+  }
+  const Handshake::Member member =
+      session.joined() ? handshake_.leave(id) : Handshake::Member::None;  // frees its seat
+  if (member == Handshake::Member::Spectator) {
+    spdlog::info("spectator {} '{}' ({}) left: {}", id, session.name(), session.peer(),
+                 to_string(reason));
+  } else if (member == Handshake::Member::Lobby) {
+    spdlog::info("client {} '{}' ({}) left the lobby: {}", id, session.name(), session.peer(),
+                 to_string(reason));
+  } else if (session.joined()) {
+    // A straggler has left the world already (drop_stragglers).
+    if (simulation_.leave(id)) feeds_.leave(id);
+    stragglers_.forget(id);
+    told_clamped_.erase(id);
+    spdlog::info("client {} '{}' ({}) left: {}", id, session.name(), session.peer(),
+                 to_string(reason));
+  } else if (log_admits("closed before joining")) {
+    spdlog::info("connection {} ({}) closed before joining: {}", id, session.peer(),
+                 to_string(reason));
+  }
+  update_stats([&](ServerStats& s) { ++s.dropped[reason]; });
+  sessions_.erase(id);
+  publish_connection_counts();
+  // One client fewer may be all the lockstep gate was waiting for. Posted, because
+  // this can run in the middle of a broadcast.
+  if (config_.lockstep) schedule_lockstep();
+  if (config_.shutdown_after_match && config_.lockstep_players > 0 && handshake_.lobby_open() &&
+      simulation_.room().size() == 0 && !stopping_) {
+    spdlog::info("match over: every player has left");
+    asio::post(io_, [this] { begin_shutdown(); });
+  }
+}
+
+void Server::Impl::on_bytes(std::size_t sent, std::size_t received) {
+  update_stats([&](ServerStats& s) {
+    s.bytes_sent += sent;
+    s.bytes_received += received;
+  });
+}
+
+void Server::Impl::publish_connection_counts() {
+  update_stats([&](ServerStats& s) {
+    s.connected_clients = simulation_.room().size();  // players welcomed and not gone
+    s.lobby_clients = handshake_.lobby_size();
+    s.spectators = handshake_.spectator_count();
+    s.open_connections = sessions_.size();
+  });
+}
+
+}  // namespace server

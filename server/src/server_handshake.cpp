@@ -1,0 +1,100 @@
+// Carrying out a Hello's decision (handshake.h decides): the fatal Error, or the
+// session marked joined and registered with the feeds, and its Welcome; the lockstep
+// lobby's Welcomes once every seat is taken.
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "handshake.h"
+#include "server_impl.h"
+#include "snapshot_encoder.h"
+#include "wire/view_settings.h"
+
+namespace server {
+
+void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello) {
+  HelloDecision decision = handshake_.decide(session.id(), session.joined(), hello, simulation_);
+  // Held from its check on, whatever follows; on_closed forgets it.
+  if (decision.contacts) feeds_.subscribe_contacts(session.id(), std::move(*decision.contacts));
+  switch (decision.outcome) {
+    case HelloDecision::Outcome::Refused:
+      session.close_with_error(decision.refusal.code, decision.refusal.text,
+                               decision.refusal.reason);
+      return;
+    case HelloDecision::Outcome::Spectator:
+      session.set_joined(decision.name);
+      address_limits_.on_joined(session.address());
+      welcome_spectator(session, decision.view);
+      return;
+    case HelloDecision::Outcome::Lobby:
+      // Seated now, welcomed (with a body) once every seat is taken.
+      session.set_joined(decision.name);
+      address_limits_.on_joined(session.address());
+      publish_connection_counts();
+      spdlog::info("client {} '{}' ({}) seated in the lobby at seat {} ({} of {})", session.id(),
+                   session.name(), session.peer(), decision.seat, handshake_.seats().taken(),
+                   handshake_.seats().size());
+      if (decision.lobby_full) open_lobby();
+      return;
+    case HelloDecision::Outcome::Player:
+      session.set_joined(decision.name);
+      address_limits_.on_joined(session.address());
+      welcome_player(session, decision.body, decision.view);
+      return;
+  }
+}
+
+void Server::Impl::welcome_player(Session& session, phys::BodyId body,
+                                  const wire::ViewSettings& view) {
+  feeds_.join(session.id(), view, body.packed());
+  publish_connection_counts();
+  const std::uint32_t seat = handshake_.seats().seat_of(session.id()).value_or(0);
+  spdlog::info("client {} '{}' ({}) joined at tick {} in seat {} with body {}", session.id(),
+               session.name(), session.peer(), simulation_.current_tick(), seat, body.packed());
+  physics::wire::ServerMessage welcome =
+      make_welcome(simulation_, session.id(), body, config_.lockstep, wire::to_wire(view),
+                   static_cast<std::uint32_t>(config_.max_clients));
+  welcome.mutable_welcome()->set_seat(seat);
+  welcome.mutable_welcome()->set_seats(handshake_.seats().size());
+  session.send(welcome);
+}
+
+// Every seat is taken: the handshake makes the bodies in seat order; every player
+// is then welcomed at tick 0.
+void Server::Impl::open_lobby() {
+  const LobbyOpening opening = handshake_.open_lobby(simulation_);
+  for (const ClientId id : opening.no_spawn) {
+    if (const auto session = sessions_.find(id); session != sessions_.end()) {
+      session->second->close_with_error(physics::wire::ERROR_NO_SPAWN,
+                                        "no free spawn position for another body",
+                                        DropReason::NoSpawn);
+    }
+  }
+  std::size_t welcomed = 0;
+  for (const LobbyWelcome& player : opening.welcomed) {
+    const auto session = sessions_.find(player.client);
+    if (session == sessions_.end()) continue;  // on_closed leaves the lobby first
+    const std::shared_ptr<Session> held = session->second;
+    welcome_player(*held, player.body, player.view);
+    ++welcomed;
+  }
+  update_stats([](ServerStats& s) { s.lockstep_started = true; });
+  spdlog::info("lobby full: {} players welcomed, tick 1 waits for their inputs", welcomed);
+}
+
+void Server::Impl::welcome_spectator(Session& session, const wire::ViewSettings& view) {
+  feeds_.join(session.id(), view, std::nullopt);
+  publish_connection_counts();
+  spdlog::info("spectator {} '{}' ({}) joined at tick {}", session.id(), session.name(),
+               session.peer(), simulation_.current_tick());
+  physics::wire::ServerMessage welcome =
+      make_welcome(simulation_, session.id(), phys::BodyId::invalid(), config_.lockstep,
+                   wire::to_wire(view), static_cast<std::uint32_t>(config_.max_clients));
+  welcome.mutable_welcome()->set_body_id(0);
+  welcome.mutable_welcome()->set_spectator(true);
+  session.send(welcome);
+}
+
+}  // namespace server

@@ -1,0 +1,129 @@
+// Message dispatch: what each ClientMessage does once its session has read it, the
+// Hello aside (server_handshake.cpp).
+#include <spdlog/spdlog.h>
+
+#include <string>
+
+#include "handshake.h"
+#include "server_impl.h"
+#include "wire/messages.h"
+
+namespace server {
+
+void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& message) {
+  using Kind = physics::wire::ClientMessage::KindCase;
+  // PROTOCOL.md 3.1: the first message must be Hello. Anything else before it (a
+  // Ping included: it must not keep a connection that never joined alive) is fatal;
+  // Bye closes quietly, and an empty envelope is malformed (below).
+  const Kind kind = message.kind_case();
+  if (!session.joined() && kind != Kind::kHello && kind != Kind::kBye &&
+      kind != Kind::KIND_NOT_SET) {
+    session.close_with_error(physics::wire::ERROR_UNEXPECTED_MESSAGE,
+                             "a message before Hello: the first message must be Hello",
+                             DropReason::UnexpectedMessage);
+    return;
+  }
+  switch (kind) {
+    case Kind::kHello:
+      on_hello(session, message.hello());
+      return;
+    case Kind::kInput:
+      if (handshake_.is_spectator(session.id())) {
+        session.send(wire::make_error(physics::wire::ERROR_SPECTATOR_INPUT,
+                                      "a spectator has no body to move; input dropped", false));
+        return;
+      }
+      on_input(session, message.input());
+      return;
+    case Kind::kPing: {
+      physics::wire::ServerMessage reply;
+      physics::wire::Pong& pong = *reply.mutable_pong();
+      pong.set_nonce(message.ping().nonce());
+      pong.set_client_time_ns(message.ping().client_time_ns());
+      pong.set_server_tick(simulation_.current_tick());
+      session.send(reply);
+      return;
+    }
+    case Kind::kAck:
+      on_ack(session, message.ack());
+      return;
+    case Kind::kFullStateRequest:
+      on_full_state_request(session);
+      return;
+    case Kind::kBye:
+      spdlog::info("client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
+      session.close_now(DropReason::ClientBye);
+      return;
+    case Kind::KIND_NOT_SET:
+      break;
+  }
+  session.close_with_error(physics::wire::ERROR_MALFORMED,
+                           "ClientMessage holds no known message (empty or from a newer "
+                           "protocol)",
+                           DropReason::Malformed);
+}
+
+void Server::Impl::on_ack(Session& session, const physics::wire::Ack& ack) {
+  if (feeds_.ack(session.id(), ack.tick()) == AckResult::Accepted) return;
+  update_stats([](ServerStats& s) { ++s.invalid_acks; });
+  session.send(wire::make_error(physics::wire::ERROR_INVALID_ACK,
+                                "Ack for tick " + std::to_string(ack.tick()) +
+                                    ", after the newest snapshot sent to this client; ignored",
+                                false));
+}
+
+void Server::Impl::on_full_state_request(Session& session) {
+  if (feeds_.request_full_state(session.id()) == FullStateResult::Accepted) return;
+  update_stats([](ServerStats& s) { ++s.rate_limited; });
+  session.send(wire::make_error(physics::wire::ERROR_RATE_LIMITED,
+                                "a full state is already on its way to this client; the "
+                                "request is merged with it",
+                                false));
+}
+
+void Server::Impl::on_input(Session& session, const physics::wire::Input& input) {
+  const InputCheck check =
+      simulation_.submit_input(session.id(), input.tick(), {input.ax(), input.ay()});
+  switch (check.verdict) {
+    case InputVerdict::NonFinite:
+      update_stats([](ServerStats& s) { ++s.invalid_inputs; });
+      session.send(wire::make_error(physics::wire::ERROR_INVALID_INPUT,
+                                    "input for tick " + std::to_string(input.tick()) +
+                                        " has a NaN or infinite acceleration; dropped",
+                                    false));
+      return;
+    case InputVerdict::TooFarAhead:
+      update_stats([](ServerStats& s) { ++s.far_future_inputs; });
+      session.send(wire::make_error(
+          physics::wire::ERROR_TICK_TOO_FAR_AHEAD,
+          "input for tick " + std::to_string(input.tick()) + " is more than " +
+              std::to_string(simulation_.max_ticks_ahead()) + " ticks after the current tick " +
+              std::to_string(simulation_.current_tick()) + "; dropped",
+          false));
+      return;
+    case InputVerdict::NotJoined:
+      return;  // cannot happen: on_message only passes inputs of joined sessions
+    case InputVerdict::Late:
+      update_stats([](ServerStats& s) { ++s.late_inputs; });
+      break;
+    case InputVerdict::OnTime:
+      break;
+  }
+  if (check.clamped) {
+    update_stats([](ServerStats& s) { ++s.clamped_inputs; });
+    // Said once a player, not once an input: a client that always pushes past the
+    // limit learns it without being sent an Error per tick.
+    if (told_clamped_.insert(session.id()).second) {
+      session.send(
+          wire::make_error(physics::wire::ERROR_INPUT_CLAMPED,
+                           "input for tick " + std::to_string(input.tick()) +
+                               " is over the scene's max acceleration " +
+                               std::to_string(simulation_.scene().max_acceleration) +
+                               " m/s^2 (Welcome.max_acceleration) and was clamped to it; said once",
+                           false));
+    }
+  }
+  if (config_.lockstep) schedule_lockstep();
+}
+
+}  // namespace server
