@@ -52,8 +52,7 @@ OverlapResult max_overlap(const SceneSpec& scene, std::span<const BodySample> dy
       center = dynamic[next_dynamic++].position;
       if (!phys::is_finite(center)) continue;
     }
-    const phys::Vec2 half = body.shape == phys::Shape::Circle ? phys::Vec2{body.radius, body.radius}
-                                                              : body.half_extents;
+    const phys::Vec2 half = phys::half_size(body.shape, body.radius, body.half_extents);
     items.push_back({body.shape, body.is_static, center, half});
   }
   std::sort(items.begin(), items.end(),
@@ -78,10 +77,7 @@ std::size_t escaped_count(const SceneSpec& scene, std::span<const BodySample> dy
   std::size_t escaped = 0;
   const phys::Aabb& box = scene.container;
   for (const BodySample& body : dynamic) {
-    const phys::Vec2 p = body.position;
-    const bool inside =
-        p.x >= box.min.x && p.x <= box.max.x && p.y >= box.min.y && p.y <= box.max.y;
-    if (!inside) ++escaped;
+    if (!phys::contains(box, body.position)) ++escaped;
   }
   return escaped;
 }

@@ -9,19 +9,6 @@
 namespace server {
 namespace {
 
-// The half size of the box a body occupies, as the core sizes it: a circle's is
-// (radius, radius).
-phys::Vec2 half_size(phys::Shape shape, double radius, phys::Vec2 half_extents) {
-  return shape == phys::Shape::Circle ? phys::Vec2{radius, radius} : half_extents;
-}
-
-phys::Aabb box_around(phys::Vec2 center, phys::Vec2 half) { return {center - half, center + half}; }
-
-bool inside(const phys::Aabb& inner, const phys::Aabb& outer) {
-  return inner.min.x >= outer.min.x && inner.max.x <= outer.max.x && inner.min.y >= outer.min.y &&
-         inner.max.y <= outer.max.y;
-}
-
 // Offsets of ring r, in a fixed order: the 8 compass directions.
 std::array<phys::Vec2, 8> ring_offsets(int ring, phys::Vec2 step) {
   const double r = static_cast<double>(ring);
@@ -39,18 +26,18 @@ std::optional<phys::Vec2> find_spawn_position(const scene::SceneDef& scene,
   std::vector<phys::Aabb> occupied;
   occupied.reserve(world.body_count());
   world.for_each_body([&](const phys::BodyState& body) {
-    occupied.push_back(
-        box_around(body.position, half_size(body.shape, body.radius, body.half_extents)));
+    occupied.push_back(phys::box_around(
+        body.position, phys::half_size(body.shape, body.radius, body.half_extents)));
   });
 
   const phys::WorldSettings& settings = world.settings();
   const phys::Vec2 h =
-      half_size(scene.player.shape, scene.player.radius, scene.player.half_extents);
+      phys::half_size(scene.player.shape, scene.player.radius, scene.player.half_extents);
   // Touching counts as overlapping (as in the core's boxes_intersect): a body spawned
   // flush against another would be in contact from its first step.
   auto is_free = [&](phys::Vec2 at) {
-    const phys::Aabb box = box_around(at, h);
-    if (settings.has_bounds && !inside(box, settings.bounds)) return false;
+    const phys::Aabb box = phys::box_around(at, h);
+    if (settings.has_bounds && !phys::contains(settings.bounds, box)) return false;
     return std::none_of(occupied.begin(), occupied.end(),
                         [&](const phys::Aabb& other) { return phys::boxes_intersect(box, other); });
   };

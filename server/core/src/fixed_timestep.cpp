@@ -17,7 +17,7 @@ FixedTimestep::FixedTimestep(const Clock& clock, FixedTimestepConfig config)
       period_(period_of(config.tick_rate_hz)),
       max_steps_(config.max_steps_per_frame),
       last_(clock.now()) {
-  assert(config.tick_rate_hz > 0.0 && config.tick_rate_hz <= 10000.0);
+  assert(config.tick_rate_hz >= kMinTickRate && config.tick_rate_hz <= kMaxTickRate);
   assert(config.max_steps_per_frame >= 1);
 }
 

@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 
+#include "physics/formulas.h"
 #include "world_impl.h"
 
 namespace phys {
@@ -49,12 +50,8 @@ BodyDefError WorldImpl::check(const BodyDef& def) const {
       !std::isfinite(def.contact_friction) || def.contact_friction < 0.0) {
     return BodyDefError::BadFriction;
   }
-  if (settings.has_bounds) {
-    const Vec2 p = def.position;
-    const Aabb& b = settings.bounds;
-    if (p.x < b.min.x || p.x > b.max.x || p.y < b.min.y || p.y > b.max.y) {
-      return BodyDefError::OutOfBounds;
-    }
+  if (settings.has_bounds && !contains(settings.bounds, def.position)) {
+    return BodyDefError::OutOfBounds;
   }
   if (alive_count_ >= settings.max_bodies) return BodyDefError::TooManyBodies;
   return BodyDefError::None;
@@ -87,7 +84,7 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
   b.motion = def.motion;
   b.position = def.position;
   b.radius = def.shape == Shape::Circle ? def.radius : 0.0;
-  b.half = def.shape == Shape::Circle ? Vec2{def.radius, def.radius} : def.half_extents;
+  b.half = half_size(def.shape, def.radius, def.half_extents);
   b.restitution = def.restitution;
   b.friction = def.friction;
   b.contact_friction = def.contact_friction;
@@ -123,11 +120,7 @@ bool WorldImpl::remove_body(BodyId id) {
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     Body& o = bodies[i];
     if (o.alive && o.is_dynamic() && !o.awake && i != id.index) {
-      const Aabb ob = o.bounds();
-      if (!(ob.min.x > around.max.x || ob.max.x < around.min.x || ob.min.y > around.max.y ||
-            ob.max.y < around.min.y)) {
-        wake(i);
-      }
+      if (boxes_intersect(o.bounds(), around)) wake(i);
     }
   }
   if (b->is_dynamic()) --dynamic_count_;

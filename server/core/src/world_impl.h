@@ -74,7 +74,7 @@ struct alignas(64) Body {
   Vec2 held{};
   Vec2 still_anchor{};
 
-  Aabb bounds() const { return {position - half, position + half}; }
+  Aabb bounds() const { return box_around(position, half); }
   bool is_dynamic() const { return motion == Motion::Dynamic; }
 };
 

@@ -28,6 +28,12 @@ struct BodyDef {
   double contact_friction = 0.0;
 };
 
+// The half size of the box a body occupies: a circle's is (radius, radius), a box's its
+// half extents.
+constexpr Vec2 half_size(Shape shape, double radius, Vec2 half_extents) {
+  return shape == Shape::Circle ? Vec2{radius, radius} : half_extents;
+}
+
 // Why a BodyDef was refused. Every value names the field at fault.
 enum class BodyDefError : std::uint8_t {
   None,

@@ -13,6 +13,13 @@
 
 namespace phys {
 
+// Ticks per second, wherever a rate comes from (a scene, physics-server's --tick-rate,
+// a recording) and wherever it is stepped: in [kMinTickRate, kMaxTickRate]. The floor
+// keeps dt = 1 / rate finite (a denormal rate would make it infinite); the ceiling is
+// a 1 ms tick. scene/scene.h names the same two values for the scene's users.
+inline constexpr double kMinTickRate = 0.001;
+inline constexpr double kMaxTickRate = 1000.0;
+
 struct FixedTimestepConfig {
   double tick_rate_hz = 60.0;
   int max_steps_per_frame = 6;
@@ -27,7 +34,7 @@ class FixedTimestep {
  public:
   using Update = std::function<void(double dt)>;
 
-  // tick_rate_hz in (0, 10000], max_steps_per_frame >= 1.
+  // tick_rate_hz in [kMinTickRate, kMaxTickRate], max_steps_per_frame >= 1.
   FixedTimestep(const Clock& clock, FixedTimestepConfig config);
 
   // Reads the clock once, adds the elapsed time, runs the updates due.

@@ -70,4 +70,18 @@ struct Aabb {
   Vec2 max;
 };
 
+// The box of half size `half` around `center`: every body's box, the core's and its
+// users' (a circle's half size is (radius, radius): half_size in physics/body.h).
+constexpr Aabb box_around(Vec2 center, Vec2 half) { return {center - half, center + half}; }
+
+// Whether p lies in the box, its edges included.
+constexpr bool contains(const Aabb& box, Vec2 p) {
+  return p.x >= box.min.x && p.x <= box.max.x && p.y >= box.min.y && p.y <= box.max.y;
+}
+
+// Whether `inner` lies wholly in `outer`, edges included.
+constexpr bool contains(const Aabb& outer, const Aabb& inner) {
+  return contains(outer, inner.min) && contains(outer, inner.max);
+}
+
 }  // namespace phys

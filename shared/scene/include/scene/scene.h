@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "physics/body.h"
+#include "physics/fixed_timestep.h"
 #include "physics/settings.h"
 #include "physics/world.h"
 
@@ -52,12 +53,10 @@ inline constexpr std::int64_t kMaxSceneBodies = 1 << 20;
 // Positions are refused beyond this distance from the origin on either axis: far
 // out, a double still resolves about 2e-9 m, but nothing we test goes there.
 inline constexpr double kMaxCoordinate = 1.0e7;
-// Ticks per second, wherever a rate comes from (a scene, physics-server's --tick-rate,
-// a recording) and wherever it is stepped (server::Simulation): in [kMinTickRate,
-// kMaxTickRate]. The floor keeps dt = 1 / rate finite (a denormal rate would make it
-// infinite); the ceiling is a 1 ms tick.
-inline constexpr double kMinTickRate = 0.001;
-inline constexpr double kMaxTickRate = 1000.0;
+// Ticks per second, wherever a rate comes from and wherever it is stepped: the core's
+// one range (physics/fixed_timestep.h).
+using phys::kMaxTickRate;
+using phys::kMinTickRate;
 // False for NaN too.
 constexpr bool is_valid_tick_rate(double rate) {
   return rate >= kMinTickRate && rate <= kMaxTickRate;
