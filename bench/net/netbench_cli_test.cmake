@@ -3,27 +3,15 @@
 # table row and writes its CSV.
 #   cmake -DNETBENCH=path/to/physics-netbench -DWORK=dir -P netbench_cli_test.cmake
 
-function(expect_usage_error what expected_text)
-  execute_process(COMMAND ${NETBENCH} ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out
-                  ERROR_VARIABLE err TIMEOUT 30)
-  if(NOT rc EQUAL 2)
-    message(FATAL_ERROR "${what}: exit ${rc}, expected 2\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${expected_text}")
-    message(FATAL_ERROR "${what}: the message does not say '${expected_text}':\n${out}${err}")
-  endif()
-  if("${out}${err}" MATCHES "terminate called|Aborted")
-    message(FATAL_ERROR "${what}: aborted\n${out}${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/expect_usage_error.cmake)
 
-expect_usage_error("--tick-rate -5" "not in range" --tick-rate -5)
-expect_usage_error("--tick-rate abc" "Failed parsing abc" --tick-rate abc)
-expect_usage_error("--bots 0" "--bots" --bots 0)
-expect_usage_error("--bots -3" "--bots" --bots -3)
-expect_usage_error("--duration -1" "--duration" --duration -1)
-expect_usage_error("--encodings zip" "--encodings" --encodings zip)
-expect_usage_error("--scenes missing" "missing.textproto" --scenes ${WORK}/missing.textproto)
+expect_usage_error("--tick-rate -5" "not in range" ${NETBENCH} --tick-rate -5)
+expect_usage_error("--tick-rate abc" "Failed parsing abc" ${NETBENCH} --tick-rate abc)
+expect_usage_error("--bots 0" "--bots" ${NETBENCH} --bots 0)
+expect_usage_error("--bots -3" "--bots" ${NETBENCH} --bots -3)
+expect_usage_error("--duration -1" "--duration" ${NETBENCH} --duration -1)
+expect_usage_error("--encodings zip" "--encodings" ${NETBENCH} --encodings zip)
+expect_usage_error("--scenes missing" "missing.textproto" ${NETBENCH} --scenes ${WORK}/missing.textproto)
 
 # One bot on the built-in scene for a fraction of a second: the row says it joined,
 # and the CSV has the header and that row.

@@ -14,11 +14,6 @@
 namespace {
 
 using namespace playout_test;
-using client::PlayoutBuffer;
-using client::PlayoutFrame;
-using client::PlayoutSettings;
-using client::PlayoutStatus;
-using client::PushResult;
 
 TEST(PlayoutBuffer, RefusesBadSnapshotsAndKeepsServing) {
   PlayoutBuffer buffer(PlayoutSettings{});

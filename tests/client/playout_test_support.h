@@ -8,6 +8,13 @@
 
 namespace playout_test {
 
+// The buffer's names, for the tests that use this namespace.
+using client::PlayoutBuffer;
+using client::PlayoutFrame;
+using client::PlayoutSettings;
+using client::PlayoutStatus;
+using client::PushResult;
+
 constexpr double kTickRate = 60.0;
 constexpr double kLatency = 0.050;      // the fastest transit, s
 constexpr double kFrame = 1.0 / 144.0;  // the display's frame time, s

@@ -14,11 +14,6 @@
 namespace {
 
 using namespace playout_test;
-using client::PlayoutBuffer;
-using client::PlayoutFrame;
-using client::PlayoutSettings;
-using client::PlayoutStatus;
-using client::PushResult;
 
 // A fixed sequence in [0, 1): the scripted jitter, the same on every run.
 class Script {

@@ -48,4 +48,17 @@ std::string varint(std::uint64_t value) {
   return out;
 }
 
+::testing::AssertionResult fatal_error_then_closed(RawPeer& peer, physics::wire::ErrorCode code) {
+  const auto error = peer.receive_error(3s);
+  if (!error) return ::testing::AssertionFailure() << "no Error arrived";
+  if (error->code() != code) {
+    return ::testing::AssertionFailure()
+           << "Error " << physics::wire::ErrorCode_Name(error->code()) << " (" << error->message()
+           << "), expected " << physics::wire::ErrorCode_Name(code);
+  }
+  if (!error->fatal()) return ::testing::AssertionFailure() << "the Error is not fatal";
+  if (!peer.wait_closed(3s)) return ::testing::AssertionFailure() << "the server kept it open";
+  return ::testing::AssertionSuccess();
+}
+
 }  // namespace itest

@@ -32,6 +32,10 @@ class BadInput : public ::testing::Test {
   std::size_t max_queued_snapshots_ = 0;
 };
 
+// Whether the peer got a fatal Error with `code` and the server then closed the
+// connection; the failure says what came instead.
+::testing::AssertionResult fatal_error_then_closed(RawPeer& peer, physics::wire::ErrorCode code);
+
 // `value` as a varint, the way a length prefix is written, for prefixes no encoder
 // would send.
 std::string varint(std::uint64_t value);

@@ -19,11 +19,7 @@ TEST_F(BadInput, InputBeforeHelloIsAnUnexpectedMessage) {
   start();
   RawPeer peer(server_->port());
   ASSERT_TRUE(peer.send(input_message(1, 1.0, 1.0)));
-  auto error = peer.receive_error(3s);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_EQ(error->code(), pb::ERROR_UNEXPECTED_MESSAGE);
-  EXPECT_TRUE(error->fatal());
-  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(fatal_error_then_closed(peer, pb::ERROR_UNEXPECTED_MESSAGE));
 }
 
 // PROTOCOL.md 3.1: anything but Hello first is ERROR_UNEXPECTED_MESSAGE, fatal; a
@@ -52,12 +48,8 @@ TEST_F(BadInput, SecondHelloIsAnUnexpectedMessage) {
   auto welcome = peer.receive(3s);
   ASSERT_TRUE(welcome && welcome->has_welcome());
   ASSERT_TRUE(peer.send(hello_message("twice")));
-  auto error = peer.receive_error(3s);
-  ASSERT_TRUE(error.has_value());
   // PROTOCOL.md 3.1: a second Hello is ERROR_UNEXPECTED_MESSAGE, fatal.
-  EXPECT_EQ(error->code(), pb::ERROR_UNEXPECTED_MESSAGE);
-  EXPECT_TRUE(error->fatal());
-  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(fatal_error_then_closed(peer, pb::ERROR_UNEXPECTED_MESSAGE));
 }
 
 TEST_F(BadInput, MaxClientsReachedRefusesTheNextOne) {

@@ -101,11 +101,7 @@ TEST_F(BadInput, RandomBytesAfterWelcomeEndOnlyThatSession) {
   // wire type 7 (invalid), then noise.
   std::string body_bytes = "\x7F\xFF\xFF\xFF\xFF\xFF\xFF\xFF\xFF\xFF\x01 noise";
   peer.send_bytes(varint(body_bytes.size()) + body_bytes);
-  auto error = peer.receive_error(3s);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_EQ(error->code(), pb::ERROR_MALFORMED);
-  EXPECT_TRUE(error->fatal());
-  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(fatal_error_then_closed(peer, pb::ERROR_MALFORMED));
   EXPECT_TRUE(body_removed(body));
 }
 
@@ -117,11 +113,7 @@ TEST_F(BadInput, LengthPrefixOverTheMaximumIsRefusedAndClosed) {
   // One byte over the 1 MiB limit, and only the prefix: the server must refuse it
   // from the prefix alone, without waiting for (or allocating) the body.
   peer.send_bytes(varint(wire::kDefaultMaxMessageBytes + 1));
-  auto error = peer.receive_error(3s);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_EQ(error->code(), pb::ERROR_MESSAGE_TOO_LARGE);
-  EXPECT_TRUE(error->fatal());
-  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(fatal_error_then_closed(peer, pb::ERROR_MESSAGE_TOO_LARGE));
   EXPECT_TRUE(eventually(
       [&] { return dropped(server_->stats(), server::DropReason::MessageTooLarge) == 1; }));
 }
@@ -132,11 +124,7 @@ TEST_F(BadInput, HugeLengthPrefixBeforeHelloIsRefused) {
   start();
   RawPeer peer(server_->port());
   peer.send_bytes(varint(std::numeric_limits<std::uint64_t>::max() / 2));
-  auto error = peer.receive_error(3s);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_EQ(error->code(), pb::ERROR_MESSAGE_TOO_LARGE);
-  EXPECT_TRUE(error->fatal());
-  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(fatal_error_then_closed(peer, pb::ERROR_MESSAGE_TOO_LARGE));
   EXPECT_TRUE(eventually(
       [&] { return dropped(server_->stats(), server::DropReason::MessageTooLarge) == 1; }));
 }
@@ -145,12 +133,8 @@ TEST_F(BadInput, OverlongVarintPrefixIsMalformed) {
   start();
   RawPeer peer(server_->port());
   peer.send_bytes(std::string(11, '\xFF'));
-  auto error = peer.receive_error(3s);
-  ASSERT_TRUE(error.has_value());
   // PROTOCOL.md 1.1: a varint longer than 10 bytes is ERROR_MALFORMED, fatal.
-  EXPECT_EQ(error->code(), pb::ERROR_MALFORMED) << error->message();
-  EXPECT_TRUE(error->fatal());
-  EXPECT_TRUE(peer.wait_closed(3s));
+  EXPECT_TRUE(fatal_error_then_closed(peer, pb::ERROR_MALFORMED));
 }
 
 TEST_F(BadInput, FrameCutOffByADisconnectRemovesTheSession) {

@@ -2,19 +2,7 @@
 # says what was wrong, and nothing aborts (physics-netbench's: bench/net).
 #   cmake -DSERVER=... -DCLIENT=... -P cli_flags_test.cmake
 
-function(expect_usage_error what expected_text)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err
-                  TIMEOUT 30)
-  if(NOT rc EQUAL 2)
-    message(FATAL_ERROR "${what}: exit ${rc}, expected 2\n${out}${err}")
-  endif()
-  if(NOT "${out}${err}" MATCHES "${expected_text}")
-    message(FATAL_ERROR "${what}: the message does not say '${expected_text}':\n${out}${err}")
-  endif()
-  if("${out}${err}" MATCHES "terminate called|Aborted")
-    message(FATAL_ERROR "${what}: aborted\n${out}${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../../cmake/expect_usage_error.cmake)
 
 expect_usage_error("server --port 99999" "0 to 65535" ${SERVER} --port 99999)
 expect_usage_error("server --tick-rate abc" "Failed parsing abc" ${SERVER} --tick-rate abc)
