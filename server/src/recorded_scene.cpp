@@ -1,7 +1,8 @@
 #include "server/recorded_scene.h"
 
-#include <bit>
 #include <cmath>
+
+#include "physics/fnv_hash.h"
 
 namespace server {
 namespace {
@@ -193,26 +194,19 @@ std::variant<scene::SceneDef, std::string> from_recorded(const physics::recordin
 }
 
 std::uint64_t body_hash(const phys::BodyState& body) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  const auto mix = [&h](std::uint64_t word) {
-    for (int i = 0; i < 8; ++i) {
-      h ^= (word >> (8 * i)) & 0xffu;
-      h *= 0x100000001b3ull;
-    }
-  };
-  const auto mix_double = [&](double v) { mix(std::bit_cast<std::uint64_t>(v)); };
-  mix(body.id.packed());
-  mix(static_cast<std::uint64_t>(body.shape) | (static_cast<std::uint64_t>(body.motion) << 8));
-  mix_double(body.position.x);
-  mix_double(body.position.y);
-  mix_double(body.velocity.x);
-  mix_double(body.velocity.y);
-  mix_double(body.acceleration.x);
-  mix_double(body.acceleration.y);
-  mix_double(body.radius);
-  mix_double(body.half_extents.x);
-  mix_double(body.half_extents.y);
-  return h;
+  phys::Fnv1a64 h;
+  h.mix(body.id.packed());
+  h.mix(static_cast<std::uint64_t>(body.shape) | (static_cast<std::uint64_t>(body.motion) << 8));
+  h.mix_double(body.position.x);
+  h.mix_double(body.position.y);
+  h.mix_double(body.velocity.x);
+  h.mix_double(body.velocity.y);
+  h.mix_double(body.acceleration.x);
+  h.mix_double(body.acceleration.y);
+  h.mix_double(body.radius);
+  h.mix_double(body.half_extents.x);
+  h.mix_double(body.half_extents.y);
+  return h.value();
 }
 
 }  // namespace server

@@ -1,10 +1,10 @@
 #include "physics/world.h"
 
 #include <algorithm>
-#include <bit>
 #include <cassert>
 #include <cmath>
 
+#include "physics/fnv_hash.h"
 #include "physics/formulas.h"
 #include "world_impl.h"
 
@@ -166,29 +166,22 @@ BodyState WorldImpl::state_of(std::uint32_t index) const {
 
 // FNV-1a over 64-bit words of the exact bit patterns, in slot order.
 std::uint64_t WorldImpl::state_hash() const {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  const auto mix = [&h](std::uint64_t word) {
-    for (int i = 0; i < 8; ++i) {
-      h ^= (word >> (8 * i)) & 0xffu;
-      h *= 0x100000001b3ull;
-    }
-  };
-  const auto mix_double = [&](double v) { mix(std::bit_cast<std::uint64_t>(v)); };
+  Fnv1a64 h;
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     const Body& b = bodies[i];
     if (!b.alive) continue;
-    mix((static_cast<std::uint64_t>(b.generation) << 32) | i);
-    mix(static_cast<std::uint64_t>(b.shape) | (static_cast<std::uint64_t>(b.motion) << 8));
-    mix_double(b.position.x);
-    mix_double(b.position.y);
-    mix_double(b.velocity.x);
-    mix_double(b.velocity.y);
-    mix_double(b.acceleration.x);
-    mix_double(b.acceleration.y);
-    mix_double(b.half.x);
-    mix_double(b.half.y);
+    h.mix((static_cast<std::uint64_t>(b.generation) << 32) | i);
+    h.mix(static_cast<std::uint64_t>(b.shape) | (static_cast<std::uint64_t>(b.motion) << 8));
+    h.mix_double(b.position.x);
+    h.mix_double(b.position.y);
+    h.mix_double(b.velocity.x);
+    h.mix_double(b.velocity.y);
+    h.mix_double(b.acceleration.x);
+    h.mix_double(b.acceleration.y);
+    h.mix_double(b.half.x);
+    h.mix_double(b.half.y);
   }
-  return h;
+  return h.value();
 }
 
 // ---- World: the public face ----
