@@ -36,13 +36,16 @@ TEST(SlowClient, NeverReadingClientHoldsItsWindowWhileOthersAreServedThenIsDropp
   ASSERT_TRUE(sleeper.send(hello));
 
   // The sleeper keeps talking (so it is not idle) but never reads. Meanwhile the
-  // good client must keep getting ticks: 60 of them, however slow the build.
+  // good client must keep getting ticks: 60 of them, however slow the build. A
+  // server held up by the sleeper would send it none at all; 5 s between two of its
+  // snapshots leaves a ThreadSanitizer build on a busy machine (a few ticks a
+  // second) room, while staying under the 20 s the sleeper's drop is awaited.
   std::uint64_t last_tick = 0;
   std::size_t good_snapshots = 0;
   auto serve_good_once = [&] {
     sleeper.send(input_message(last_tick + 1, 0.0, 0.0));
     good.send_input(last_tick + 1, 0.0, 0.0);  // its inputs make every tick news
-    auto snapshot = good.next_snapshot(2s);
+    auto snapshot = good.next_snapshot(5s);
     ASSERT_TRUE(snapshot.has_value())
         << "the good client stalled: " << good.last_error().to_string();
     EXPECT_GT(snapshot->tick, last_tick);
