@@ -19,8 +19,8 @@ results="$here/results"
 
 # The runs, in the order they run, and the files each writes into bench/results/.
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
-      pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench replay-size
-      contact-events soak core-comparison)
+      pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
+      replay-size contact-events soak core-comparison)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -41,6 +41,7 @@ declare -A writes=(
     accuracy-pile-rain-box2d-mu0.2-timeline-ratios.csv
     accuracy-pile-rain-box2d-mu0.2-timeline-seconds.csv"
   [micro]="benchmarks-micro.json"
+  [net-paths]="netbench-paths.csv netbench-paths-default-jitter.csv"
   [replay-size]="replay-size.csv"
   [contact-events]="contact-events.csv"
   [soak]="soak-moving-1000.csv"
@@ -181,6 +182,14 @@ run_micro() {
     --benchmark_out="$out/benchmarks-micro.json" --benchmark_out_format=json
 }
 run_netbench() { BUILD_DIR="$build" "$here/run-netbench.sh"; }
+run_net-paths() {  # lockstep and fixed rate through the link conditioner (about 8 minutes)
+  local netbench="$build/bench/physics-netbench"
+  "$netbench" --paths --duration 5 --csv "$out/netbench-paths.csv"
+  # Where a driving player's snapshots go on the default scene through a jittered path.
+  "$netbench" --paths --modes fixed --fixed-scene "$root/scenes/default.textproto" \
+    --one-way-ms 50 --jitter-ms 10 --stall-ms 0 --duration 20 \
+    --csv "$out/netbench-paths-default-jitter.csv"
+}
 run_replay-size() {  # server recordings of 8 clients at 60 Hz, 10 minutes each (seconds)
   local size="$build/tests/replay/physics-replay-size"
   [[ -x "$size" ]] || { echo "run-report: $size not built (ninja -C $build physics-replay-size)" >&2; return 1; }

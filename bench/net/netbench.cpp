@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "client/load.h"
+#include "path_grid.h"
 #include "scene/scene.h"
 #include "server/server.h"
 
@@ -123,14 +125,63 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--still", still, "Bots send no inputs: they watch (no latency figures)");
   app.add_option("--csv", csv_path, "Also write the table as CSV to this file");
+  // The path grid (docs/BENCHMARKS.md, "Over real paths").
+  bool paths = false;
+  netbench::PathGridOptions grid;
+  std::string fixed_scene = "scenes/moving-1000.textproto";
+  app.add_flag("--paths", paths,
+               "Run the path grid instead: lockstep and fixed rate through a link conditioner "
+               "at each one-way latency and jitter, with the client library as it is and as it "
+               "was (inputs after each snapshot, a window of 12), side by side");
+  app.add_option("--one-way-ms", grid.one_way_ms, "Path grid: one-way latencies")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::Range(0, 2000));
+  app.add_option("--jitter-ms", grid.jitter_ms, "Path grid: jitters (0 to this, per chunk)")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--stall-ms", grid.stall_ms, "Path grid: the stall rows' stall (0: none)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 10000));
+  app.add_option("--stall-every-ms", grid.stall_every_ms, "Path grid: one stall this often")
+      ->capture_default_str()
+      ->check(CLI::Range(100, 600000));
+  app.add_option("--lockstep-clients", grid.lockstep_clients, "Path grid: lockstep player counts")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::Range(1, 64));
+  app.add_option("--fixed-scene", fixed_scene, "Path grid: the fixed-rate rows' scene file")
+      ->capture_default_str();
+  std::vector<std::string> modes{"lockstep", "fixed"};
+  app.add_option("--modes", modes, "Path grid: which rows, lockstep and/or fixed")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::IsMember({"lockstep", "fixed"}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
     const int code = app.exit(error);
     return code == 0 ? 0 : 2;  // bad flags: 2, as every tool of ours
   }
-  spdlog::set_level(spdlog::level::warn);  // the table, not the server's log
+  spdlog::set_level(spdlog::level::err);  // the table, not the server's log
   try {
+    if (paths) {
+      auto loaded = scene::load_scene_file(fixed_scene);
+      if (auto* error = std::get_if<scene::SceneError>(&loaded)) {
+        fmt::print(stderr, "physics-netbench: {}\n", error->to_string());
+        return 2;
+      }
+      grid.fixed_scene = std::get<scene::SceneDef>(std::move(loaded));
+      grid.fixed_scene_label = fixed_scene;
+      grid.lockstep_scene = scene::default_scene();
+      grid.seconds = duration;
+      grid.tick_rate = tick_rate > 0.0 ? tick_rate : 60.0;
+      grid.csv_path = csv_path;
+      grid.lockstep = std::find(modes.begin(), modes.end(), "lockstep") != modes.end();
+      grid.fixed = std::find(modes.begin(), modes.end(), "fixed") != modes.end();
+      return netbench::run_path_grid(grid);
+    }
     return run_all(scene_files, bot_counts, encodings, duration, warmup, settle, tick_rate, still,
                    csv_path);
   } catch (const std::invalid_argument& error) {

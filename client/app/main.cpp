@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "client/client.h"
+#include "client/input_pacer.h"
 #include "client/load.h"
 #include "pattern.h"
 #include "print.h"
@@ -27,6 +28,7 @@ constexpr int kExitLost = 3;
 
 struct Options {
   client::ClientConfig client;
+  client::PacerConfig pacer;
   std::vector<double> accel;
   std::uint64_t ticks = 0;  // 0: until the server ends the session
   bool json = false;
@@ -50,19 +52,20 @@ int run_single(const Options& options) {
   if (options.accel.size() == 2)
     pattern.constant = client::Vec2{options.accel[0], options.accel[1]};
 
-  // The first input names the tick after the one we joined at; after that each
-  // snapshot of tick T is answered with the input for T + 1 (in lockstep the server
-  // waits for it, in real time it holds until the next one).
-  std::uint64_t next_input_tick = welcome.current_tick + 1;
-  const client::Vec2 first = pattern.at(next_input_tick);
+  // Inputs go out on the client's own clock, ahead of the server by the input delay
+  // (docs/PROTOCOL.md 3.4): in lockstep the server then keeps its tick rate at any
+  // round trip. The acceleration of a tick depends on the tick alone.
   const bool watching = welcome.spectator;  // a spectator has no body to steer
-  if (!watching) connection.send_input(next_input_tick, first.x, first.y);
+  client::InputPacer pacer(connection, options.pacer);
+  const auto input = [&](std::uint64_t tick) { return pattern.at(tick); };
   // Without a snapshot for this long the server is presumed gone.
   const auto snapshot_timeout =
       std::max(2000ms, std::chrono::milliseconds(static_cast<long>(4000.0 / welcome.tick_rate)));
   std::uint64_t printed = 0;
   while (options.ticks == 0 || printed < options.ticks) {
-    auto snapshot = connection.next_snapshot(snapshot_timeout);
+    auto snapshot = watching
+                        ? connection.next_snapshot(snapshot_timeout)
+                        : pacer.poll(std::chrono::steady_clock::now() + snapshot_timeout, input);
     if (!snapshot) {
       const std::string why = connection.state() == client::ConnectionState::Connected
                                   ? fmt::format("no snapshot for {} ms", snapshot_timeout.count())
@@ -84,14 +87,6 @@ int run_single(const Options& options) {
       fmt::print(stderr, "physics-client: server error {}: {}\n", client::to_string(error->code),
                  error->message);
     }
-    if (!watching && snapshot->tick + 1 > next_input_tick) {
-      next_input_tick = snapshot->tick + 1;
-      const client::Vec2 acceleration = pattern.at(next_input_tick);
-      if (!connection.send_input(next_input_tick, acceleration.x, acceleration.y)) {
-        fmt::print(stderr, "physics-client: {}\n", connection.last_error().to_string());
-        return kExitLost;
-      }
-    }
   }
   connection.disconnect("physics-client done");
   return 0;
@@ -103,6 +98,7 @@ int run_bots(const Options& options) {
   load.bots = options.bots;
   load.duration = std::chrono::milliseconds(static_cast<long>(options.duration_seconds * 1000.0));
   load.connect_timeout = std::chrono::milliseconds(options.connect_timeout_ms);
+  load.pacer = options.pacer;
   const client::LoadReport report = client::run_load(load);
   fmt::print("{}\n", client_app::format_load_report(report, options.json));
   if (report.bots_connected == 0) {
@@ -148,6 +144,18 @@ int main(int argc, char** argv) {
                  "How long to wait for the connection and the Welcome")
       ->check(CLI::Range(1, 600000))
       ->capture_default_str();
+  std::int64_t input_delay = -1;
+  app.add_option("--input-delay", input_delay,
+                 "Send each input this many ticks ahead of the server's tick (default: chosen "
+                 "from the round trip and adapted to the margins the server reports)")
+      ->check(CLI::Range(std::int64_t{0}, std::int64_t{1000}));
+  std::string schedule = "clock";
+  app.add_option("--input-schedule", schedule,
+                 "When inputs are sent: clock (ahead by the input delay, on the client's "
+                 "clock) or after-snapshot (the input for T+1 once the snapshot of T arrived: "
+                 "a lockstep server then waits a round trip a tick)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"clock", "after-snapshot"}));
   // The view (docs/PROTOCOL.md, section 5.1); the server checks every range.
   std::string encoding = "predicted";
   app.add_option("--encoding", encoding,
@@ -191,6 +199,9 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitUsage;
   }
   options.client.port = static_cast<std::uint16_t>(port);
+  if (input_delay >= 0) options.pacer.clock.fixed_delay = static_cast<std::uint32_t>(input_delay);
+  options.pacer.schedule = schedule == "after-snapshot" ? client::InputSchedule::AfterSnapshot
+                                                        : client::InputSchedule::Clock;
   if (seat >= 0) options.client.seat = static_cast<std::uint32_t>(seat);
   if (contacts || !contact_bodies.empty()) {
     client::ContactSubscription subscription;

@@ -64,23 +64,33 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         "{{\"bots\":{},\"connected\":{},\"seconds\":{:.3f},\"latency_samples\":{},"
         "\"latency_median_ms\":{:.3f},\"latency_p99_ms\":{:.3f},\"latency_max_ms\":{:.3f},"
         "\"bytes_per_second_mean\":{:.0f},\"bytes_per_second_min\":{:.0f},"
-        "\"bytes_per_second_max\":{:.0f},\"snapshots_per_second\":{:.2f},\"inputs_sent\":{},"
+        "\"bytes_per_second_max\":{:.0f},\"snapshots_per_second\":{:.2f},"
+        "\"ticks_per_second\":{:.2f},\"input_delay_ticks\":{:.1f},"
+        "\"input_delay_ticks_min\":{},\"input_delay_ticks_max\":{},"
+        "\"snapshot_age_ms_median\":{:.3f},\"snapshot_age_ms_p99\":{:.3f},"
+        "\"late_inputs\":{},\"inputs_sent\":{},"
         "\"inputs_unanswered\":{},\"snapshots_dropped\":{},\"failures\":{}}}",
         report.bots_requested, report.bots_connected, report.seconds, report.latency_samples,
         report.latency_median_ms, report.latency_p99_ms, report.latency_max_ms,
         report.bytes_per_second_mean, report.bytes_per_second_min, report.bytes_per_second_max,
-        report.snapshots_per_second_mean, report.inputs_sent, report.inputs_unanswered,
-        report.snapshots_dropped, report.failures.size());
+        report.snapshots_per_second_mean, report.ticks_per_second, report.input_delay_median,
+        report.input_delay_min, report.input_delay_max, report.snapshot_age_median_ms,
+        report.snapshot_age_p99_ms, report.late_margins, report.inputs_sent,
+        report.inputs_unanswered, report.snapshots_dropped, report.failures.size());
   }
   std::string text = fmt::format(
       "bots {} (connected {}) over {:.2f} s\n"
       "input -> snapshot latency: median {:.3f} ms, p99 {:.3f} ms, max {:.3f} ms ({} samples)\n"
       "received per client: mean {:.0f} B/s (min {:.0f}, max {:.0f}), {:.2f} snapshots/s\n"
+      "server ticks {:.2f}/s; input delay {:.1f} ticks (at the end {} to {}); "
+      "newest snapshot age median {:.1f} ms, p99 {:.1f} ms; late inputs {}\n"
       "inputs sent {}, unanswered at the end {}, snapshots dropped by client buffer {}",
       report.bots_requested, report.bots_connected, report.seconds, report.latency_median_ms,
       report.latency_p99_ms, report.latency_max_ms, report.latency_samples,
       report.bytes_per_second_mean, report.bytes_per_second_min, report.bytes_per_second_max,
-      report.snapshots_per_second_mean, report.inputs_sent, report.inputs_unanswered,
+      report.snapshots_per_second_mean, report.ticks_per_second, report.input_delay_median,
+      report.input_delay_min, report.input_delay_max, report.snapshot_age_median_ms,
+      report.snapshot_age_p99_ms, report.late_margins, report.inputs_sent, report.inputs_unanswered,
       report.snapshots_dropped);
   for (const auto& failure : report.failures) text += "\n" + failure;
   return text;

@@ -122,6 +122,7 @@ void Client::handle_frame(const std::string& frame) {
     case Kind::kPong:
       if (pongs_.size() >= kMaxBufferedSmallEvents) pongs_.pop_front();
       pongs_.push_back(convert::from_wire(message.pong()));
+      pongs_.back().received_at = Clock::now();
       return;
     case Kind::KIND_NOT_SET:
       // A kind newer than this client: ignored, as proto3 intends.

@@ -90,6 +90,7 @@ Snapshot header_from_wire(const pb::Snapshot& message) {
                                        vec(e.normal()), e.closing_speed()});
   }
   snapshot.contact_events_dropped = message.contact_events_dropped();
+  if (message.has_input_margin_us()) snapshot.input_margin_us = message.input_margin_us();
   return snapshot;
 }
 
@@ -146,7 +147,11 @@ ServerError from_wire(const pb::Error& message) {
 }
 
 Pong from_wire(const pb::Pong& message) {
-  return {message.nonce(), message.client_time_ns(), message.server_tick()};
+  Pong pong;
+  pong.nonce = message.nonce();
+  pong.client_time_ns = message.client_time_ns();
+  pong.server_tick = message.server_tick();
+  return pong;
 }
 
 pb::ClientMessage make_hello(const ClientConfig& config) {

@@ -115,6 +115,9 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
       log_limiter_(kLogLinesPerSecond, std::chrono::seconds(1)),
       handshake_(config_),
       stragglers_(config_.lockstep_max_timeouts),
+      input_timing_(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                        std::chrono::duration<double>(1.0 / simulation_.tick_rate())),
+                    config_.lockstep_timeout),
       tick_period_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
           std::chrono::duration<double>(1.0 / simulation_.tick_rate()))) {
   silence_protobuf_log();
@@ -122,6 +125,7 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
   limits_.max_hello_bytes = config_.max_hello_bytes;
   limits_.handshake_timeout = config_.handshake_timeout;
   limits_.max_queued_snapshots = config_.max_snapshot_window + 1;
+  feeds_.size_windows(tick_period_, config_.max_snapshot_window);
   limits_.idle_timeout = config_.idle_timeout;
   limits_.close_linger = config_.close_linger;
   limits_.socket_send_buffer_bytes = config_.socket_send_buffer_bytes;

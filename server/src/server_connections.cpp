@@ -130,6 +130,7 @@ void Server::Impl::on_closed(Session& session, DropReason reason) {
   } else if (session.joined()) {
     // A straggler has left the world already (drop_stragglers).
     if (simulation_.leave(id)) feeds_.leave(id);
+    input_timing_.forget(id);
     stragglers_.forget(id);
     told_clamped_.erase(id);
     spdlog::info("client {} '{}' ({}) left: {}", id, session.name(), session.peer(),

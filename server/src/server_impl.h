@@ -17,6 +17,7 @@
 #include "address_limits.h"
 #include "agones_sdk.h"
 #include "handshake.h"
+#include "input_timing.h"
 #include "log_limiter.h"
 #include "metrics_http.h"
 #include "physics/clock.h"
@@ -71,7 +72,8 @@ class Server::Impl final : public SessionHost {
   void welcome_spectator(Session& session, const wire::ViewSettings& view);
   void drop_stragglers(const TickResult& result, bool timed_out);
   void log_stats_line();
-  TickResult run_one_tick();
+  // `scheduled`: when the tick was due by the pace (input_timing.h).
+  TickResult run_one_tick(std::optional<std::chrono::steady_clock::time_point> scheduled);
   void broadcast(const TruthFrame& frame);
   void arm_housekeeping();
   void begin_shutdown();
@@ -121,6 +123,8 @@ class Server::Impl final : public SessionHost {
   StragglerWatch stragglers_;
   std::set<std::uint32_t> told_clamped_;  // players already told of a clamped input
   std::chrono::steady_clock::time_point next_lockstep_due_{};  // Pace::Realtime
+  std::optional<std::chrono::steady_clock::time_point> last_lockstep_step_;  // Pace::Asap
+  InputTiming input_timing_;
   std::chrono::steady_clock::duration tick_period_{};
   std::chrono::steady_clock::time_point next_stats_line_{};
   std::unique_ptr<MetricsHttp> metrics_;

@@ -64,7 +64,7 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
 }
 
 void Server::Impl::on_ack(Session& session, const physics::wire::Ack& ack) {
-  if (feeds_.ack(session.id(), ack.tick()) == AckResult::Accepted) return;
+  if (feeds_.ack(session.id(), ack.tick(), clock_.now()) == AckResult::Accepted) return;
   update_stats([](ServerStats& s) { ++s.invalid_acks; });
   session.send(wire::make_error(physics::wire::ERROR_INVALID_ACK,
                                 "Ack for tick " + std::to_string(ack.tick()) +
@@ -109,6 +109,7 @@ void Server::Impl::on_input(Session& session, const physics::wire::Input& input)
     case InputVerdict::OnTime:
       break;
   }
+  input_timing_.arrived(session.id(), input.tick(), clock_.now());
   if (check.clamped) {
     update_stats([](ServerStats& s) { ++s.clamped_inputs; });
     // Said once a player, not once an input: a client that always pushes past the

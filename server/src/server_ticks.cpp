@@ -44,7 +44,8 @@ void Server::Impl::guard_tick(Tick&& tick) {
 }
 
 void Server::Impl::on_tick_timer() {
-  const phys::FrameResult frame = timestep_->frame([this](double) { run_one_tick(); });
+  // At a fixed rate a tick is due when it runs: an input that arrives later is late.
+  const phys::FrameResult frame = timestep_->frame([this](double) { run_one_tick(clock_.now()); });
   if (frame.dropped_steps > 0) {
     update_stats([&](ServerStats& s) { s.dropped_steps += frame.dropped_steps; });
     if (log_admits("dropped steps"))
@@ -81,6 +82,9 @@ void Server::Impl::try_lockstep() {
   const LockstepGate::Decision decision =
       gate_.decide(simulation_.all_inputs_present(), simulation_.any_input_present(), clock_.now());
   if (decision != LockstepGate::Decision::Wait) {
+    // When this tick was due: realtime, its place on the tick clock; asap, when the
+    // previous tick stepped (its inputs could have been there by then).
+    std::optional<std::chrono::steady_clock::time_point> scheduled = last_lockstep_step_;
     if (config_.lockstep_pace == ServerConfig::Pace::Realtime) {
       const auto now = clock_.now();
       if (now < next_lockstep_due_) {
@@ -90,10 +94,12 @@ void Server::Impl::try_lockstep() {
         });
         return;
       }
+      if (last_lockstep_step_) scheduled = next_lockstep_due_;
       // Drift-free while on time; after a stall, no burst to catch up.
       next_lockstep_due_ = std::max(next_lockstep_due_ + tick_period_, now);
     }
-    const TickResult result = run_one_tick();
+    const TickResult result = run_one_tick(scheduled);
+    last_lockstep_step_ = clock_.now();
     gate_.stepped();
     const bool timed_out = decision == LockstepGate::Decision::StepAfterTimeout;
     if (timed_out) {
@@ -126,8 +132,10 @@ void Server::Impl::try_lockstep() {
   }
 }
 
-TickResult Server::Impl::run_one_tick() {
+TickResult Server::Impl::run_one_tick(
+    std::optional<std::chrono::steady_clock::time_point> scheduled) {
   const auto started = std::chrono::steady_clock::now();
+  input_timing_.stepped(simulation_.current_tick() + 1, scheduled);
   // Contact events cost the step nothing while nobody subscribes.
   simulation_.set_contact_events(feeds_.any_contact_subscriber());
   TickResult result = simulation_.step_tick();
@@ -180,8 +188,9 @@ TickResult Server::Impl::run_one_tick() {
 }
 
 void Server::Impl::broadcast(const TruthFrame& frame) {
-  std::vector<FeedOutput> outputs =
-      feeds_.after_tick(frame, simulation_.world(), [this](FeedClient client) {
+  std::vector<FeedOutput> outputs = feeds_.after_tick(
+      frame, simulation_.world(),
+      [this](FeedClient client) {
         const ClientInputs* inputs = simulation_.inputs_of(client);
         ClientFields fields;
         if (inputs != nullptr) {
@@ -189,7 +198,8 @@ void Server::Impl::broadcast(const TruthFrame& frame) {
           fields.has_applied_input = inputs->has_applied();
         }
         return fields;
-      });
+      },
+      clock_.now());
   std::size_t peak = 0;
   for (FeedOutput& out : outputs) {
     const auto it = sessions_.find(out.client);
@@ -197,6 +207,12 @@ void Server::Impl::broadcast(const TruthFrame& frame) {
     // Held by a copy: a session that turns out too slow closes, and leaves the map.
     const std::shared_ptr<Session> session = it->second;
     if (session->closing()) continue;
+    if (const auto margin = input_timing_.take_least_margin(out.client)) {
+      // Appended to the client's own bytes: a second Snapshot message merges into one.
+      physics::wire::Snapshot timing;
+      timing.set_input_margin_us(margin->count());
+      out.tail += timing.SerializeAsString();
+    }
     session->send_snapshot(std::move(out.shared), std::move(out.tail));
     peak = std::max(peak, session->queued_snapshots());
   }
@@ -214,6 +230,7 @@ void Server::Impl::drop_stragglers(const TickResult& result, bool timed_out) {
     const std::shared_ptr<Session> session = it->second;
     if (simulation_.leave(id)) {
       feeds_.leave(id);
+      input_timing_.forget(id);
       publish_connection_counts();
     }
     stragglers_.forget(id);

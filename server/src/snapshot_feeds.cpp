@@ -54,6 +54,8 @@ void SnapshotFeeds::join(FeedClient client, const wire::ViewSettings& settings,
   Feed feed;
   feed.settings = settings;
   feed.own = own_body;
+  feed.unacked = AckWindow(settings.window, settings.window_adapts,
+                           {tick_period_ * settings.snapshot_interval, max_window_});
   const std::optional<std::uint64_t> existing = shareable_view(settings);
   const std::uint64_t view = existing ? *existing : new_view(settings, can_share(settings));
   auto [it, inserted] = feeds_.emplace(client, std::move(feed));
@@ -111,12 +113,18 @@ void SnapshotFeeds::note_removed(std::uint64_t id) {
   }
 }
 
-AckResult SnapshotFeeds::ack(FeedClient client, std::uint64_t tick) {
+void SnapshotFeeds::size_windows(std::chrono::nanoseconds tick_period, std::uint32_t max_window) {
+  tick_period_ = tick_period;
+  max_window_ = max_window;
+}
+
+AckResult SnapshotFeeds::ack(FeedClient client, std::uint64_t tick,
+                             std::chrono::steady_clock::time_point now) {
   const auto it = feeds_.find(client);
   if (it == feeds_.end()) return AckResult::NeverSent;
   Feed& feed = it->second;
   if (!feed.last_sent || tick > *feed.last_sent) return AckResult::NeverSent;
-  while (!feed.unacked.empty() && feed.unacked.front() <= tick) feed.unacked.pop_front();
+  feed.unacked.acked(tick, now);
   return AckResult::Accepted;
 }
 
@@ -169,7 +177,8 @@ std::string SnapshotFeeds::tail_for(Feed& feed, const ClientFields& fields,
 }
 
 std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::World& world,
-                                           const std::map<FeedClient, ClientFields>& fields) {
+                                           const std::map<FeedClient, ClientFields>& fields,
+                                           std::chrono::steady_clock::time_point now) {
   file_contact_events(frame);
   std::vector<FeedOutput> outputs;
   std::vector<std::uint64_t> ids;
@@ -185,7 +194,7 @@ std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::
     std::vector<FeedClient> blocked;
     for (const FeedClient c : entry.members) {
       const Feed& feed = feeds_.at(c);
-      (feed.unacked.size() < feed.settings.window ? ready : blocked).push_back(c);
+      (feed.unacked.open() ? ready : blocked).push_back(c);
     }
     stats_.skipped += blocked.size();
     if (ready.empty()) continue;  // the mirror waits with them: nobody falls out of step
@@ -233,7 +242,7 @@ std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::
         feed.needs_full = false;
         ++stats_.full_states;
       }
-      feed.unacked.push_back(frame.tick);
+      feed.unacked.sent(frame.tick, now);
       feed.last_sent = frame.tick;
       ++stats_.snapshots;
       stats_.records += out.records;
@@ -245,7 +254,12 @@ std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::
 
 std::size_t SnapshotFeeds::unacknowledged(FeedClient client) const {
   const auto it = feeds_.find(client);
-  return it == feeds_.end() ? 0 : it->second.unacked.size();
+  return it == feeds_.end() ? 0 : it->second.unacked.unacknowledged();
+}
+
+std::uint32_t SnapshotFeeds::window(FeedClient client) const {
+  const auto it = feeds_.find(client);
+  return it == feeds_.end() ? 0 : it->second.unacked.window();
 }
 
 std::size_t SnapshotFeeds::view_members(FeedClient client) const {

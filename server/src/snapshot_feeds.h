@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "ack_window.h"
 #include "contact_subscription.h"
 #include "physics/world.h"
 #include "truth_frame.h"
@@ -78,17 +79,25 @@ class SnapshotFeeds {
   void note_added(std::uint64_t id);
   void note_removed(std::uint64_t id);
 
-  AckResult ack(FeedClient client, std::uint64_t tick);
+  // Windows of clients that left view.window unset grow with their round trip
+  // (ack_window.h); off until called.
+  void size_windows(std::chrono::nanoseconds tick_period, std::uint32_t max_window);
+
+  AckResult ack(FeedClient client, std::uint64_t tick,
+                std::chrono::steady_clock::time_point now = {});
   FullStateResult request_full_state(FeedClient client);
 
   // After a tick: the snapshots to send. `fields(client)` gives a client's input
   // fields; `world` gives the shapes of added bodies.
   template <class Fields>
   std::vector<FeedOutput> after_tick(const TruthFrame& frame, const phys::World& world,
-                                     Fields&& fields);
+                                     Fields&& fields,
+                                     std::chrono::steady_clock::time_point now = {});
 
   // Snapshots sent to `client` and not acknowledged.
   std::size_t unacknowledged(FeedClient client) const;
+  // The window `client` is held to now (its view's, or grown with its round trip).
+  std::uint32_t window(FeedClient client) const;
   std::size_t view_count() const { return views_.size(); }
   std::size_t view_members(FeedClient client) const;
   const View* view_of(FeedClient client) const;
@@ -99,7 +108,7 @@ class SnapshotFeeds {
     wire::ViewSettings settings;
     std::optional<std::uint64_t> own;
     std::uint64_t view = 0;
-    std::deque<std::uint64_t> unacked;  // ticks sent, ascending
+    AckWindow unacked{1, false, {}};
     std::optional<std::uint64_t> last_sent;
     bool needs_full = true;
     std::set<std::uint64_t> added;
@@ -118,7 +127,8 @@ class SnapshotFeeds {
   };
 
   std::vector<FeedOutput> run(const TruthFrame& frame, const phys::World& world,
-                              const std::map<FeedClient, ClientFields>& fields);
+                              const std::map<FeedClient, ClientFields>& fields,
+                              std::chrono::steady_clock::time_point now);
   std::uint64_t new_view(const wire::ViewSettings& settings, bool shareable);
   std::optional<std::uint64_t> shareable_view(const wire::ViewSettings& settings) const;
   static bool can_share(const wire::ViewSettings& settings);
@@ -129,6 +139,8 @@ class SnapshotFeeds {
 
   wire::Predictor predictor_;
   std::uint64_t heartbeat_ticks_;
+  std::chrono::nanoseconds tick_period_{0};  // 0: windows do not grow
+  std::uint32_t max_window_ = 0;
   bool lockstep_;
   std::map<FeedClient, Feed> feeds_;
   std::map<FeedClient, ContactFilter> contact_filters_;
@@ -139,10 +151,11 @@ class SnapshotFeeds {
 
 template <class Fields>
 std::vector<FeedOutput> SnapshotFeeds::after_tick(const TruthFrame& frame, const phys::World& world,
-                                                  Fields&& fields) {
+                                                  Fields&& fields,
+                                                  std::chrono::steady_clock::time_point now) {
   std::map<FeedClient, ClientFields> all;
   for (const auto& [client, feed] : feeds_) all.emplace(client, fields(client));
-  return run(frame, world, all);
+  return run(frame, world, all, now);
 }
 
 }  // namespace server

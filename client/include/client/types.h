@@ -148,6 +148,10 @@ struct Snapshot {
   // first, and how many were lost over the server's limit.
   std::vector<ContactEvent> contact_events;
   std::uint32_t contact_events_dropped = 0;
+  // How early this client's inputs for the ticks since the previous snapshot arrived
+  // at the server, the least of them (negative: late); unset when none named such a
+  // tick. InputClock takes it (docs/PROTOCOL.md 3.4).
+  std::optional<std::int64_t> input_margin_us;
   std::size_t records = 0;  // bodies this snapshot carried (the rest were predicted)
   bool full = false;        // a full state: the bodies held were rebuilt from it
   // Predicted and exact encodings: the server's hash of what this client holds, and
@@ -164,8 +168,10 @@ struct Snapshot {
 
 struct Pong {
   std::uint64_t nonce = 0;
-  std::uint64_t client_time_ns = 0;
+  std::uint64_t client_time_ns = 0;  // the Ping's, in the client's steady clock
   std::uint64_t server_tick = 0;
+  // Local bookkeeping, not on the wire: when it was decoded.
+  std::chrono::steady_clock::time_point received_at;
 };
 
 // The server's error codes; the numbers are physics.wire.ErrorCode's.

@@ -23,6 +23,12 @@ struct BotResult {
   std::uint64_t unanswered = 0;
   std::uint64_t dropped = 0;
   double seconds = 0.0;
+  double ticks_per_second = 0.0;
+  std::vector<double> delays;
+  std::uint32_t final_delay = 0;
+  std::vector<double> ages_ms;
+  std::uint64_t margins = 0;
+  std::uint64_t late_margins = 0;
 };
 
 struct PendingInput {
@@ -30,8 +36,8 @@ struct PendingInput {
   Clock::time_point sent_at;
 };
 
-// One bot: connects, waits for the others, then answers every snapshot with an
-// input until the measurement ends.
+// One bot: connects, waits for the others, then sends an input every tick until
+// the measurement ends.
 void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResult& result) {
   ClientConfig client_config = config.client;
   client_config.name.append("-").append(std::to_string(index));
@@ -41,30 +47,68 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
   start.arrive_and_wait();
   if (!result.connected) return;
 
+  InputPacer pacer(bot, config.pacer);
+  std::deque<PendingInput> pending;
+  // Bots circle at different phases so that they do not all push the same way.
+  const double phase = 2.0 * M_PI * index / std::max(1, config.bots);
+  bool measuring = false;
+  const InputPacer::InputFor input = [&](std::uint64_t tick) -> Vec2 {
+    if (config.still) return {0.0, 0.0};
+    if (measuring) {
+      pending.push_back({tick, Clock::now()});
+      ++result.inputs;
+    }
+    const double angle = phase + 2.0 * M_PI * static_cast<double>(tick % 120) / 120.0;
+    return {config.acceleration * std::cos(angle), config.acceleration * std::sin(angle)};
+  };
+  // A still bot only watches (at a fixed rate it sends nothing; in lockstep, where
+  // every tick waits for it, it sends zeros).
+  const bool watch_only = config.still && !bot.welcome().lockstep;
+  const auto poll = [&](Clock::time_point until) -> std::optional<Snapshot> {
+    if (!watch_only) return pacer.poll(until, input);
+    return bot.next_snapshot(std::chrono::ceil<std::chrono::milliseconds>(
+        std::max<Clock::duration>(until - Clock::now(), Clock::duration::zero())));
+  };
+
   for (const auto settled = Clock::now() + config.settle; Clock::now() < settled;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(settled - Clock::now());
-    bot.next_snapshot(std::max(left, std::chrono::milliseconds(1)));
+    poll(settled);
     if (bot.state() != ConnectionState::Connected) break;
   }
+  measuring = true;
   const auto begin = Clock::now();
   const auto end = begin + config.duration;
   const std::uint64_t bytes_before = bot.stats().bytes_received;
   const std::uint64_t snapshots_before = bot.stats().snapshots_received;
   const std::uint64_t records_before = bot.stats().records_received;
-  std::deque<PendingInput> pending;
-  std::uint64_t last_input_tick = 0;
-  // Bots circle at different phases so that they do not all push the same way.
-  const double phase = 2.0 * M_PI * index / std::max(1, config.bots);
+  const PacerStats pacer_before = pacer.stats();
+  std::optional<std::uint64_t> first_tick;
+  std::uint64_t last_tick = 0;
+  Clock::time_point first_at{};
+  Clock::time_point last_at{};
+  std::optional<Snapshot> previous;
   while (Clock::now() < end) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now());
-    auto snapshot = bot.next_snapshot(std::max(left, std::chrono::milliseconds(1)));
+    auto snapshot = poll(end);
     if (!snapshot) {
       if (bot.state() != ConnectionState::Connected) {
         result.failure = bot.last_error().to_string();
+        break;
       }
-      if (bot.state() != ConnectionState::Connected || Clock::now() >= end) break;
       continue;
     }
+    if (!first_tick) {
+      first_tick = snapshot->tick;
+      first_at = snapshot->received_at;
+    }
+    last_tick = std::max(last_tick, snapshot->tick);
+    last_at = snapshot->received_at;
+    if (previous && !watch_only) {
+      // The previous snapshot's age just before this one replaced it.
+      const double ahead =
+          pacer.clock().server_tick(snapshot->received_at) - static_cast<double>(previous->tick);
+      result.ages_ms.push_back(
+          ahead * std::chrono::duration<double, std::milli>(pacer.clock().period()).count());
+    }
+    if (!watch_only) result.delays.push_back(pacer.clock().delay());
     while (!pending.empty() && snapshot->has_applied_input &&
            snapshot->last_applied_input_tick >= pending.front().tick) {
       const std::chrono::duration<double, std::milli> latency =
@@ -72,21 +116,16 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
       result.latencies_ms.push_back(latency.count());
       pending.pop_front();
     }
-    if (config.still) continue;
-    const std::uint64_t tick = snapshot->tick + config.input_lead;
-    if (tick <= last_input_tick) continue;  // already sent (we were behind)
-    const double angle = phase + 2.0 * M_PI * static_cast<double>(tick % 120) / 120.0;
-    const auto sent_at = Clock::now();
-    if (!bot.send_input(tick, config.acceleration * std::cos(angle),
-                        config.acceleration * std::sin(angle))) {
-      result.failure = bot.last_error().to_string();
-      break;
-    }
-    pending.push_back({tick, sent_at});
-    last_input_tick = tick;
-    ++result.inputs;
+    previous = std::move(snapshot);
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+  if (first_tick && last_at > first_at) {
+    result.ticks_per_second = static_cast<double>(last_tick - *first_tick) /
+                              std::chrono::duration<double>(last_at - first_at).count();
+  }
+  result.final_delay = pacer.clock().delay();
+  result.margins = pacer.stats().margins_seen - pacer_before.margins_seen;
+  result.late_margins = pacer.stats().late_margins - pacer_before.late_margins;
   result.bytes = bot.stats().bytes_received - bytes_before;
   result.snapshots = bot.stats().snapshots_received - snapshots_before;
   result.records = bot.stats().records_received - records_before;
@@ -122,7 +161,11 @@ LoadReport run_load(const LoadConfig& config) {
   report.bots_requested = bots;
   std::vector<double> latencies;
   std::vector<double> rates;
+  std::vector<double> delays;
+  std::vector<double> ages;
   double snapshot_rate_sum = 0.0;
+  double tick_rate_sum = 0.0;
+  bool any_delay = false;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const BotResult& result = results[i];
     if (!result.failure.empty()) {
@@ -136,6 +179,15 @@ LoadReport run_load(const LoadConfig& config) {
       snapshot_rate_sum += static_cast<double>(result.snapshots) / result.seconds;
     }
     report.seconds = std::max(report.seconds, result.seconds);
+    delays.insert(delays.end(), result.delays.begin(), result.delays.end());
+    ages.insert(ages.end(), result.ages_ms.begin(), result.ages_ms.end());
+    tick_rate_sum += result.ticks_per_second;
+    report.input_delay_min =
+        any_delay ? std::min(report.input_delay_min, result.final_delay) : result.final_delay;
+    report.input_delay_max = std::max(report.input_delay_max, result.final_delay);
+    any_delay = true;
+    report.margins += result.margins;
+    report.late_margins += result.late_margins;
     report.inputs_sent += result.inputs;
     report.inputs_unanswered += result.unanswered;
     report.snapshots_dropped += result.dropped;
@@ -147,6 +199,12 @@ LoadReport run_load(const LoadConfig& config) {
   report.latency_median_ms = quantile(latencies, 0.5);
   report.latency_p99_ms = quantile(latencies, 0.99);
   report.latency_max_ms = quantile(latencies, 1.0);
+  report.input_delay_median = quantile(delays, 0.5);
+  report.snapshot_age_median_ms = quantile(ages, 0.5);
+  report.snapshot_age_p99_ms = quantile(ages, 0.99);
+  if (report.bots_connected > 0) {
+    report.ticks_per_second = tick_rate_sum / static_cast<double>(report.bots_connected);
+  }
   if (!rates.empty()) {
     double sum = 0.0;
     for (double rate : rates) sum += rate;

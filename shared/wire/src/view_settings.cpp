@@ -21,7 +21,7 @@ bool ViewSettings::operator==(const ViewSettings& o) const {
   return encoding == o.encoding && quantum.position == o.quantum.position &&
          quantum.velocity == o.quantum.velocity && position_tolerance == o.position_tolerance &&
          velocity_tolerance == o.velocity_tolerance && snapshot_interval == o.snapshot_interval &&
-         window == o.window && interest == o.interest && interest_radius == o.interest_radius &&
+         window == o.window && window_adapts == o.window_adapts && interest == o.interest && interest_radius == o.interest_radius &&
          interest_rect.min_x() == o.interest_rect.min_x() &&
          interest_rect.min_y() == o.interest_rect.min_y() &&
          interest_rect.max_x() == o.interest_rect.max_x() &&
@@ -68,6 +68,7 @@ std::string resolve_view(const physics::wire::ViewRequest& request, std::uint32_
   }
   const std::uint32_t window_limit = max_window < 1 ? 1 : max_window;
   s.window = std::min(s.window, window_limit);
+  s.window_adapts = !request.has_window();
   if (request.has_window()) {
     s.window = request.window();
     if (s.window < 1 || s.window > window_limit) {

@@ -1,14 +1,16 @@
 #pragma once
 // Load generation: N clients ("bots") in one process, each on its own thread,
-// each sending one input per snapshot it receives, measuring what a player feels:
-// the time from an input leaving to the first snapshot that reflects it, and the
-// bytes per second each client receives.
+// each sending an input every tick (paced by client::InputPacer), measuring what a
+// player feels: the time from an input leaving to the first snapshot that reflects
+// it, how stale the newest snapshot gets, the ticks a second the server reaches, and
+// the bytes per second each client receives.
 #include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "client/client.h"
+#include "client/input_pacer.h"
 
 namespace client {
 
@@ -18,8 +20,9 @@ struct LoadConfig {
   // How long the measurement runs once every bot is connected.
   std::chrono::milliseconds duration{5000};
   std::chrono::milliseconds connect_timeout{5000};
-  // Each bot answers snapshot T with an input for tick T + input_lead.
-  std::uint64_t input_lead = 1;
+  // When each bot sends its inputs: on its clock, ahead by the input delay (fixed or
+  // adaptive), or after each snapshot (for comparison).
+  PacerConfig pacer;
   // Acceleration magnitude of the bots' circling pattern (m/s^2).
   double acceleration = 5.0;
   // Still bots send no inputs: they only watch (and acknowledge, and keep alive).
@@ -53,6 +56,21 @@ struct LoadReport {
   std::uint64_t inputs_sent = 0;
   std::uint64_t inputs_unanswered = 0;  // sent, but no snapshot reflected them by the end
   std::uint64_t snapshots_dropped = 0;  // by the clients' own buffer bound
+  // The server's ticks a second, as the bots saw them advance (mean over bots).
+  double ticks_per_second = 0.0;
+  // The input delay in ticks the bots used (InputClock::delay()) at the end of the
+  // run: the least and the largest over bots, and the median of every bot's samples
+  // (one per snapshot).
+  std::uint32_t input_delay_min = 0;
+  std::uint32_t input_delay_max = 0;
+  double input_delay_median = 0.0;
+  // How old the newest snapshot was, at its worst, just before the next one arrived:
+  // the server's tick then (estimated, InputClock) less the snapshot's, in ms.
+  double snapshot_age_median_ms = 0.0;
+  double snapshot_age_p99_ms = 0.0;
+  // Inputs whose margin the server reported negative (they were late).
+  std::uint64_t late_margins = 0;
+  std::uint64_t margins = 0;
 };
 
 LoadReport run_load(const LoadConfig& config);

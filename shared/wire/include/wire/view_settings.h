@@ -20,6 +20,9 @@ struct ViewSettings {
   double velocity_tolerance = 0.1;
   std::uint32_t snapshot_interval = 1;
   std::uint32_t window = 12;
+  // The Hello left the window out: the server may widen it to cover the client's
+  // round trip (docs/PROTOCOL.md 5.8), never past --max-snapshot-window.
+  bool window_adapts = true;
   InterestKind interest = InterestKind::World;
   double interest_radius = 0.0;
   physics::wire::Rect interest_rect;
