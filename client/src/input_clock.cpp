@@ -8,9 +8,11 @@ namespace {
 
 using std::chrono::nanoseconds;
 
-constexpr std::chrono::seconds kSeenMemory{1};
-constexpr std::chrono::seconds kTripMemory{10};
-constexpr std::chrono::seconds kLowerWindow{2};
+constexpr std::chrono::seconds kTripMemory{2};
+// How fast the arrival offset follows a later one: 1/16 of the difference a snapshot,
+// a time constant of 16 snapshots (about a quarter second at 60 Hz).
+constexpr std::int64_t kOffsetRise = 16;
+constexpr std::chrono::seconds kLowerWindow{1};
 constexpr std::size_t kMaxSamples = 256;
 
 double ratio(nanoseconds a, nanoseconds b) {
@@ -23,10 +25,7 @@ InputClock::InputClock(InputClockConfig config)
     : config_(config),
       period_(std::chrono::duration_cast<nanoseconds>(
           std::chrono::duration<double>(1.0 / std::max(config.tick_rate, 1e-3)))) {
-  if (config_.fixed_delay) {
-    lead_ = period_ * std::min(*config_.fixed_delay, config_.max_delay);
-    lead_chosen_ = true;
-  }
+  lead_chosen_ = config_.fixed_delay.has_value();
 }
 
 void InputClock::on_tick_seen(std::uint64_t tick, time_point received) {
@@ -35,16 +34,21 @@ void InputClock::on_tick_seen(std::uint64_t tick, time_point received) {
   const double ticks = static_cast<double>(tick) - static_cast<double>(*base_tick_);
   const auto since = std::chrono::duration_cast<nanoseconds>(
       std::chrono::duration<double, std::nano>(ticks * static_cast<double>(period_.count())));
-  seen_.push_back({received, received.time_since_epoch() - since});
-  while (seen_.size() > kMaxSamples ||
-         (seen_.size() > 1 && seen_.front().received + kSeenMemory < received)) {
-    seen_.pop_front();
+  const std::chrono::nanoseconds offset = received.time_since_epoch() - since;
+  // An earlier arrival is taken at once (jitter and queueing only add delay); a later
+  // one is followed slowly, so that jitter barely moves the estimate and a server
+  // that fell behind (a stall, a lockstep tick that waited) is followed within a
+  // quarter second.
+  if (!offset_ || offset < *offset_) {
+    offset_ = offset;
+  } else {
+    *offset_ += (offset - *offset_) / kOffsetRise;
   }
   waiting_at_.reset();
 }
 
 void InputClock::on_waiting_at(std::uint64_t tick) {
-  if (seen_.empty()) waiting_at_ = tick;
+  if (!offset_) waiting_at_ = tick;
 }
 
 void InputClock::on_round_trip(nanoseconds round_trip, time_point received) {
@@ -55,9 +59,9 @@ void InputClock::on_round_trip(nanoseconds round_trip, time_point received) {
     trips_.pop_front();
   }
   if (!lead_chosen_) {
-    // Half the round trip is the one-way delay of a symmetric path; the margins the
-    // server reports correct what that guess misses.
-    lead_ = std::min(one_way() + nanoseconds(config_.safety), max_lead());
+    // A whole round trip ahead of the tick seen is half of one ahead of the server on
+    // a symmetric path; the margins the server reports correct what that guess misses.
+    ahead_ = std::min(round_trip + nanoseconds(config_.safety), max_ahead());
     lead_chosen_ = true;
     lower_window_start_ = received;
   }
@@ -69,7 +73,7 @@ void InputClock::on_margin(std::chrono::microseconds margin_us, time_point recei
   const nanoseconds safety(config_.safety);
   if (margin < safety) {
     if (received >= raise_settles_) {
-      lead_ = std::min(lead_ + (safety - margin), max_lead());
+      ahead_ = std::min(ahead_ + (safety - margin), max_ahead());
       ++raises_;
       raise_settles_ = received + round_trip().value_or(nanoseconds{0}) + 2 * period_;
     }
@@ -83,7 +87,7 @@ void InputClock::on_margin(std::chrono::microseconds margin_us, time_point recei
   // back half of the spare.
   const nanoseconds spare = *least_in_window_ - safety;
   if (spare > period_ / 4) {
-    lead_ = std::max(nanoseconds{0}, lead_ - spare / 2);
+    ahead_ = std::max(nanoseconds{0}, ahead_ - spare / 2);
     ++lowers_;
   }
   lower_window_start_ = received;
@@ -95,7 +99,15 @@ nanoseconds InputClock::one_way() const {
   return trip ? *trip / 2 : nanoseconds{0};
 }
 
-nanoseconds InputClock::max_lead() const { return period_ * config_.max_delay; }
+nanoseconds InputClock::max_ahead() const { return period_ * config_.max_delay + one_way(); }
+
+nanoseconds InputClock::ahead() const {
+  if (config_.fixed_delay)
+    return period_ * std::min(*config_.fixed_delay, config_.max_delay) + one_way();
+  return ahead_;
+}
+
+nanoseconds InputClock::lead() const { return std::max(nanoseconds{0}, ahead() - one_way()); }
 
 std::optional<nanoseconds> InputClock::round_trip() const {
   if (trips_.empty()) return std::nullopt;
@@ -104,32 +116,37 @@ std::optional<nanoseconds> InputClock::round_trip() const {
       ->round_trip;
 }
 
+double InputClock::seen_tick(time_point now) const {
+  return static_cast<double>(*base_tick_) + ratio(now.time_since_epoch() - *offset_, period_);
+}
+
 double InputClock::server_tick(time_point now) const {
-  if (seen_.empty()) return waiting_at_ ? static_cast<double>(*waiting_at_) : 0.0;
-  // The least delayed snapshot of the last second: jitter and queueing only add delay.
-  const nanoseconds least =
-      std::min_element(seen_.begin(), seen_.end(), [](const Seen& a, const Seen& b) {
-        return a.offset < b.offset;
-      })->offset;
-  const nanoseconds stepped_base = least - one_way();
-  return static_cast<double>(*base_tick_) + ratio(now.time_since_epoch() - stepped_base, period_);
+  if (!offset_) return waiting_at_ ? static_cast<double>(*waiting_at_) : 0.0;
+  return seen_tick(now) + ratio(one_way(), period_);
+}
+
+// Where the inputs sent by `now` reach: the tick seen plus the round trip and margin,
+// or, while a lockstep server waits, its tick plus the lead.
+double InputClock::send_position(time_point now) const {
+  if (!offset_) return server_tick(now) + ratio(lead(), period_);
+  return seen_tick(now) + ratio(ahead(), period_);
 }
 
 std::uint64_t InputClock::send_up_to(time_point now) const {
-  const double tick = server_tick(now) + ratio(lead_, period_);
+  const double tick = send_position(now);
   return tick <= 0.0 ? 0 : static_cast<std::uint64_t>(std::floor(tick));
 }
 
 InputClock::time_point InputClock::next_send_time(time_point now) const {
-  if (seen_.empty()) return now + period_;
-  const double tick = server_tick(now) + ratio(lead_, period_);
+  if (!offset_) return now + period_;
+  const double tick = send_position(now);
   const double left = std::floor(tick) + 1.0 - tick;  // (0, 1]
   return now + std::chrono::duration_cast<nanoseconds>(std::chrono::duration<double, std::nano>(
                    left * static_cast<double>(period_.count())));
 }
 
 std::uint32_t InputClock::delay() const {
-  return static_cast<std::uint32_t>(std::ceil(ratio(lead_, period_) - 1e-9));
+  return static_cast<std::uint32_t>(std::ceil(ratio(lead(), period_) - 1e-9));
 }
 
 }  // namespace client

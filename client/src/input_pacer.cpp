@@ -7,6 +7,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+constexpr std::chrono::seconds kFirstRoundTripWait{1};
+
 InputClockConfig with_tick_rate(InputClockConfig config, const Welcome& welcome) {
   if (config.tick_rate <= 0.0) config.tick_rate = welcome.tick_rate;
   // An input further ahead than the server accepts would be refused.
@@ -24,7 +26,8 @@ InputPacer::InputPacer(Client& client, PacerConfig config)
       clock_(with_tick_rate(config.clock, client.welcome())),
       lockstep_(client.welcome().lockstep),
       newest_seen_(client.welcome().current_tick),
-      last_sent_(client.welcome().current_tick) {
+      last_sent_(client.welcome().current_tick),
+      started_(Clock::now()) {
   if (lockstep_) {
     clock_.on_waiting_at(newest_seen_);
   } else {
@@ -66,9 +69,15 @@ std::optional<Snapshot> InputPacer::poll(Clock::time_point deadline, const Input
       ++stats_.pings_sent;
       next_ping_ = now + config_.ping_interval;
     }
-    // After a snapshot: at first the tick after the one joined at.
-    const std::uint64_t due = on_clock ? clock_.send_up_to(now) : last_sent_;
-    if (!send_through(due, input)) return std::nullopt;
+    // The first inputs wait for the first round trip (or a second without one): sent
+    // before the lead is known, they would arrive late and teach the lead a wrong
+    // lesson. A lockstep server waits for them anyway.
+    const bool lead_known = clock_.round_trip() || now >= started_ + kFirstRoundTripWait;
+    if (!on_clock || lead_known) {
+      // After a snapshot: at first the tick after the one joined at.
+      const std::uint64_t due = on_clock ? clock_.send_up_to(now) : last_sent_;
+      if (!send_through(due, input)) return std::nullopt;
+    }
     auto wake = std::min(deadline, next_ping_);
     if (on_clock) wake = std::min(wake, clock_.next_send_time(now));
     const auto wait = std::chrono::ceil<std::chrono::milliseconds>(

@@ -115,11 +115,15 @@ TEST(RealPath, RoundTripJumpGrowsTheDelayAndLateInputsStop) {
     EXPECT_GE(c.final_delay, 5u) << "client " << k;
     EXPECT_LE(c.final_delay, 7u) << "client " << k;
     EXPECT_GE(c.raises, 1u) << "client " << k;
+    // The inputs sent in the first round trips after the jump arrive late (each one
+    // makes its tick wait, which moves the server's clock and the tick the client
+    // sees later still) until the lead covers the new path: 31 to 33 late margins
+    // a client when measured, all in the 1.2 s after the jump. The bound leaves room
+    // for a loaded machine; a client that never adapted would report a late margin
+    // on each of the 240 ticks after the jump.
+    EXPECT_LE(c.pacer.late_margins, 60u) << "client " << k;
   }
-  // The ticks already in flight at the jump arrive late, and the lead grows once
-  // their margins come back, a round trip later: the late ones fall within about
-  // 30 ticks (a 150 ms round trip is 9 ticks, and one raise's hold-off another 11).
-  // None of the 250 ms timeouts fires: the tick waits for the late input instead.
+  // None of the 250 ms timeouts fires: a tick waits for the late input instead.
   EXPECT_EQ(server.stats().lockstep_timeouts, 0u);
 }
 

@@ -5,7 +5,7 @@
 // tick is due (Overwatch's input buffer; GGPO's and Quantum's input delay). The
 // server reports in each snapshot how early the client's inputs arrived
 // (Snapshot.input_margin_us); the lead grows at once when one arrives with less than
-// `safety` to spare, and shrinks slowly while every input in the last two seconds
+// `safety` to spare, and shrinks by half the spare while every input of a second
 // arrived with more. docs/PROTOCOL.md 3.4. No sockets, no clock: time is passed in.
 #include <chrono>
 #include <cstdint>
@@ -51,33 +51,39 @@ class InputClock {
 
   // The lead in ticks, rounded up: inputs name the server's tick plus this.
   std::uint32_t delay() const;
-  std::chrono::nanoseconds lead() const { return lead_; }
+  // How far ahead of the server's tick inputs are sent (half a round trip less than
+  // ahead of the tick last seen).
+  std::chrono::nanoseconds lead() const;
   std::chrono::nanoseconds period() const { return period_; }
-  // The least round trip of the last ten seconds, once one was measured.
+  // The least round trip of the last two seconds, once one was measured.
   std::optional<std::chrono::nanoseconds> round_trip() const;
   // How many times the lead grew and shrank.
   std::uint64_t raises() const { return raises_; }
   std::uint64_t lowers() const { return lowers_; }
 
  private:
-  struct Seen {
-    time_point received;
-    std::chrono::nanoseconds offset;  // received - tick periods since the epoch
-  };
   struct Trip {
     time_point received;
     std::chrono::nanoseconds round_trip;
   };
   std::chrono::nanoseconds one_way() const;
-  std::chrono::nanoseconds max_lead() const;
+  std::chrono::nanoseconds max_ahead() const;
+  // How far ahead of the tick last seen inputs are sent: a round trip and a margin.
+  std::chrono::nanoseconds ahead() const;
+  double seen_tick(time_point now) const;
+  double send_position(time_point now) const;
 
   InputClockConfig config_;
   std::chrono::nanoseconds period_;
   std::optional<std::uint64_t> base_tick_;  // the first tick seen: offsets count from it
-  std::deque<Seen> seen_;                   // the last second of ticks seen
-  std::deque<Trip> trips_;                  // the last ten seconds of round trips
+  // When tick base_tick_ was seen, of the least delayed snapshots (see on_tick_seen).
+  std::optional<std::chrono::nanoseconds> offset_;
+  std::deque<Trip> trips_;  // the last ten seconds of round trips
   std::optional<std::uint64_t> waiting_at_;
-  std::chrono::nanoseconds lead_{0};
+  // Inputs are sent this far ahead of the tick seen (adaptive; see ahead()). Kept
+  // against the tick seen, not the server's, so that a round trip that changes moves
+  // it only through the margins, never twice.
+  std::chrono::nanoseconds ahead_{0};
   bool lead_chosen_ = false;
   // Raising waits a round trip after the last raise: the margins reported meanwhile
   // are of inputs sent before it.

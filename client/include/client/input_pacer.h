@@ -73,6 +73,7 @@ class InputPacer {
   std::uint64_t newest_seen_;  // the newest tick the server is known to have stepped
   std::uint64_t last_sent_ = 0;
   std::uint64_t next_nonce_ = 1;
+  std::chrono::steady_clock::time_point started_;
   std::chrono::steady_clock::time_point next_ping_{};
   PacerStats stats_;
 };
