@@ -86,3 +86,23 @@ TEST(GameServer, TheInstalledServerRunsAsAChildProcess) {
 }
 
 }  // namespace
+
+// The same game over a 100 ms round trip with 0-10 ms of jitter: physics::testing's
+// link conditioner between the player and the server.
+TEST(GameServer, APlayerFiftyMillisecondsAwayJoinsAndIsServed) {
+  InProcessServer server(arena());
+  physics_testing::LinkConditionerConfig path_config;
+  path_config.target_port = server.port();
+  path_config.path = physics_testing::symmetric_path(50ms, 10ms);
+  physics_testing::LinkConditioner path(path_config);
+  client::ClientConfig config = server.client_config("far-player");
+  config.port = path.port();
+  client::Client player(config);
+  const auto began = std::chrono::steady_clock::now();
+  ASSERT_TRUE(player.connect(3s)) << player.last_error().to_string();
+  // Hello up and Welcome back: one round trip at least.
+  EXPECT_GE(std::chrono::steady_clock::now() - began, 100ms);
+  EXPECT_TRUE(physics_testing::wait_for_snapshot(
+      player, [](const client::Snapshot&) { return true; }, 3s, "a snapshot"));
+  EXPECT_EQ(path.stats().connections, 1u);
+}
