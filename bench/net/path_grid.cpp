@@ -156,10 +156,10 @@ Row run_lockstep(const PathGridOptions& options, int clients, const Path& path,
   }
   const double period = 1.0 / options.tick_rate;
   // The first second settles; the rest is measured. Before, a tick costs a round trip.
-  const std::uint64_t settle = static_cast<std::uint64_t>(options.tick_rate);
   const double tick_cost = behaviour == Behaviour::Now
                                ? period
                                : std::max(period, 2.0 * path.one_way_ms / 1000.0 + period);
+  const auto settle = static_cast<std::uint64_t>(std::ceil(1.0 / tick_cost));
   const std::uint64_t ticks = settle + static_cast<std::uint64_t>(row.seconds / tick_cost);
   physics_testing::PacedLockstepOptions run_options;
   run_options.ticks = ticks;
@@ -234,21 +234,24 @@ void print_row(const Row& r, double tick_rate, std::FILE* csv) {
   const double bound = (r.path.one_way_ms + r.path.jitter_ms) / period_ms + 1.0;
   if (r.mode == "lockstep") {
     fmt::print(
-        "| lockstep {} | {} | {} | {} | {} | {:.1f} | {:.1f} (max {}; bound {:.1f}) | {} | {} | "
-        "{} | {} |\n",
-        r.clients, name(r.behaviour), r.path.one_way_ms, r.path.jitter_ms,
+        "| lockstep {} | {} | {} | {} | {} | {:.1f} | {} | {} | {} | {} | {} |\n", r.clients,
+        name(r.behaviour), r.path.one_way_ms, r.path.jitter_ms,
         r.path.stall_ms > 0 ? fmt::format("{}/{}", r.path.stall_ms, r.path.stall_every_ms) : "-",
-        r.ticks_per_second, r.delay_median, r.delay_max, bound, r.timeouts_steady,
-        r.hashes_equal ? "yes" : "NO", r.missing,
+        r.ticks_per_second,
+        // Before, the input for T+1 went on the snapshot of T: no delay was chosen.
+        r.behaviour == Behaviour::Now
+            ? fmt::format("{:.1f} (max {}; bound {:.1f})", r.delay_median, r.delay_max, bound)
+            : std::string("-"),
+        r.timeouts_steady, r.hashes_equal ? "yes" : "NO", r.missing,
         r.path.stall_ms > 0 ? fmt::format("{:.0f}", r.recovery_ms) : "-");
   } else {
     fmt::print(
-        "| {} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {:.1f} "
-        "|\n",
+        "| {} | {} | {} | {} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {:.1f} | {} | {} |\n",
         name(r.behaviour), r.path.one_way_ms, r.path.jitter_ms,
         r.path.stall_ms > 0 ? fmt::format("{}/{}", r.path.stall_ms, r.path.stall_every_ms) : "-",
         r.snapshots_per_second, r.latency_median_ms, r.latency_p99_ms, r.age_median_ms,
-        r.age_p99_ms, r.kbit_per_second, r.skipped, r.delay_median);
+        r.age_p99_ms, r.kbit_per_second, r.skipped,
+        r.behaviour == Behaviour::Now ? fmt::format("{:.1f}", r.delay_median) : std::string("-"));
   }
   if (!r.note.empty()) fmt::print(stderr, "  note: {}\n", r.note);
   if (csv != nullptr) {

@@ -83,10 +83,10 @@ void InputClock::on_margin(std::chrono::microseconds margin_us, time_point recei
   }
   if (!least_in_window_ || margin < *least_in_window_) least_in_window_ = margin;
   if (received - lower_window_start_ < kLowerWindow) return;
-  // Every input of the window arrived with more than a quarter tick to spare: give
+  // Every input of the window arrived with more than an eighth of a tick to spare: give
   // back half of the spare.
   const nanoseconds spare = *least_in_window_ - safety;
-  if (spare > period_ / 4) {
+  if (spare > period_ / 8) {
     ahead_ = std::max(nanoseconds{0}, ahead_ - spare / 2);
     ++lowers_;
   }

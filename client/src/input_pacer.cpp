@@ -88,8 +88,11 @@ std::optional<Snapshot> InputPacer::poll(Clock::time_point deadline, const Input
       if (snapshot->input_margin_us) {
         ++stats_.margins_seen;
         if (*snapshot->input_margin_us < 0) ++stats_.late_margins;
-        clock_.on_margin(std::chrono::microseconds(*snapshot->input_margin_us),
-                         snapshot->received_at);
+        // After each snapshot the schedule is fixed: the margins have nothing to adapt.
+        if (on_clock) {
+          clock_.on_margin(std::chrono::microseconds(*snapshot->input_margin_us),
+                           snapshot->received_at);
+        }
       }
       if (!on_clock && !send_through(snapshot->tick + config_.after_snapshot_lead, input)) {
         return std::nullopt;
