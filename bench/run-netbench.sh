@@ -2,15 +2,16 @@
 # The network figures of docs/BENCHMARKS.md ("Network: snapshots by encoding"):
 # physics-netbench on each scene, with 1, 8, 32 and 64 clients, for the three
 # snapshot encodings side by side in one run (full is the baseline: every body,
-# exact, every tick). Writes
-# bench/results/netbench-<scene>.csv and prints the tables.
+# exact, every tick). Writes bench/results/netbench-<scene>.csv, the tracked files
+# docs/BENCHMARKS.md cites (overwritten: `git diff bench/results` shows what moved),
+# or OUT/netbench-<scene>.csv when OUT is set, and prints the tables.
 #   bench/run-netbench.sh            # everything (about 12 minutes)
-#   BOTS=1,8 DURATION=2 bench/run-netbench.sh   # a quick look
+#   OUT=/tmp/nb BOTS=1,8 DURATION=2 bench/run-netbench.sh   # a quick look, elsewhere
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${BUILD_DIR:-build}"
 netbench="$build/bench/physics-netbench"
-out=bench/results
+out="${OUT:-bench/results}"
 bots="${BOTS:-1,8,32,64}"
 duration="${DURATION:-5}"
 encodings=full,predicted,exact

@@ -105,6 +105,9 @@ function(physics_install_package)
     ${PROJECT_BINARY_DIR}/physics_server.pc @ONLY)
   install(FILES ${PROJECT_BINARY_DIR}/physics_server.pc
     DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+  # The licence (MIT) and the changes, protocol versions included, beside the package.
+  install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CHANGELOG.md
+    DESTINATION ${CMAKE_INSTALL_DOCDIR})
 endfunction()
 
 # physics_options (PhysicsCompileOptions.cmake) is linked PRIVATE by every library of

@@ -18,6 +18,12 @@ else
 fi
 prefix="$work/prefix"
 cmake --install "$build_dir" --prefix "$prefix" > "$work/install.log"
+for doc in LICENSE CHANGELOG.md; do
+  if [ ! -f "$prefix/share/doc/physics_server/$doc" ]; then
+    echo "test-package: share/doc/physics_server/$doc is not installed" >&2
+    exit 1
+  fi
+done
 
 # The consumer is copied out of the tree, so that nothing of it can reach back in.
 cp -r tests/package "$work/consumer"

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "parse_flags.h"
 #include "physics/world.h"
 #include "scenes/scenes.h"
 
@@ -73,7 +74,7 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "Runs per setting, interleaved; the best is kept")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit_code = bench::parse_flags(app, argc, argv)) return *exit_code;
 
   scenes::SceneSpec scene =
       scene_name == "rain" ? scenes::rain_scene(count, steps, 0, 0) : scenes::pile_scene(count);

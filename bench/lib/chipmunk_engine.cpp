@@ -10,9 +10,14 @@
 // so that every pair's coefficient is the same in all three engines.
 #include <chipmunk/chipmunk.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
+#include "peer_banners.h"
 #include "peer_engines.h"
 
 namespace bench {
@@ -131,6 +136,25 @@ class ChipmunkEngine final : public Engine {
 
 std::unique_ptr<Engine> make_chipmunk_engine(const SceneSpec& scene, const EngineOptions& options) {
   return std::make_unique<ChipmunkEngine>(scene, options);
+}
+
+// The banner is printed once a process, by the first cpSpaceNew (a build of Chipmunk
+// with its debug checks on, as Debian's is).
+void absorb_chipmunk_banner() {
+  std::fflush(stdout);
+  const int saved = dup(STDOUT_FILENO);
+  const int null = open("/dev/null", O_WRONLY);
+  if (saved < 0 || null < 0) {
+    if (saved >= 0) close(saved);
+    if (null >= 0) close(null);
+    return;
+  }
+  dup2(null, STDOUT_FILENO);
+  cpSpaceFree(cpSpaceNew());
+  std::fflush(stdout);
+  dup2(saved, STDOUT_FILENO);
+  close(saved);
+  close(null);
 }
 
 }  // namespace bench

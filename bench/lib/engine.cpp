@@ -1,5 +1,6 @@
 #include "engine.h"
 
+#include "peer_banners.h"
 #include "peer_engines.h"
 
 namespace bench {
@@ -54,6 +55,12 @@ bool engine_available(EngineKind kind) {
 #endif
   }
   return false;
+}
+
+void absorb_peer_banners() {
+#ifdef PHYSICS_BENCH_HAVE_CHIPMUNK
+  absorb_chipmunk_banner();
+#endif
 }
 
 std::unique_ptr<Engine> make_engine(EngineKind kind, const SceneSpec& scene,

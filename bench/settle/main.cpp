@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "finite_range.h"
+#include "parse_flags.h"
 #include "physics/world.h"
 #include "scenes/scenes.h"
 
@@ -87,7 +88,7 @@ int main(int argc, char** argv) {
   app.add_option("--per-row", o.per_row,
                  "Circles per row, centred, laid out as the 16,000-circle pile (0: as many as fit)")
       ->check(CLI::Range(0, 1000000));
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit_code = bench::parse_flags(app, argc, argv)) return *exit_code;
   // Rows 1.2 m apart that are wider than the container would start circles inside
   // or beyond its walls.
   if (o.per_row > 0 && 1.2 * o.per_row > o.width) {

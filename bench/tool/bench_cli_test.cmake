@@ -165,3 +165,27 @@ if(NOT windows_one_after_another STREQUAL windows_taking_turns)
   message(FATAL_ERROR "--interleave changed the timeline's windows:\n"
                       "${windows_one_after_another}\n${windows_taking_turns}")
 endif()
+
+# Peers asked for on a scene they do not run on: said on stderr, with the way to run
+# them. Chipmunk's banner stays off stdout, where the CSV goes.
+execute_process(COMMAND ${BENCH} --scenes projectile --engines ours,box2d,chipmunk
+                        --integrators exact --substeps 1 --iterations 4
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "physics-bench --engines ours,box2d,chipmunk failed (${rc}): ${err}")
+endif()
+if(NOT err MATCHES "run on their own scenes only \\(add --peers-everywhere[^\n]*ours alone on: projectile, projectile-friction\n")
+  message(FATAL_ERROR "physics-bench should say the peers did not run on projectile:\n${err}")
+endif()
+if(NOT out MATCHES "^scene,engine,")
+  message(FATAL_ERROR "stdout should start with the CSV header:\n${out}")
+endif()
+execute_process(COMMAND ${BENCH} --scenes projectile --engines ours,chipmunk --peers-everywhere
+                        --integrators exact --substeps 1 --iterations 4
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "physics-bench --engines ours,chipmunk failed (${rc}): ${err}")
+endif()
+if(out MATCHES "Chipmunk v" OR NOT out MATCHES "^scene,engine,")
+  message(FATAL_ERROR "stdout should hold the CSV alone, without Chipmunk's banner:\n${out}")
+endif()

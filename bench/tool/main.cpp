@@ -10,6 +10,8 @@
 
 #include "catalog.h"
 #include "finite_range.h"
+#include "parse_flags.h"
+#include "peer_banners.h"
 #include "report.h"
 #include "runner.h"
 
@@ -37,6 +39,26 @@ bool open_output(std::ofstream& file, const std::string& path) {
   file.open(path);
   if (!file) std::cerr << "physics-bench: cannot write " << path << '\n';
   return static_cast<bool>(file);
+}
+
+// The peers run on the scenes that name them (rain and pyramid) unless
+// --peers-everywhere: asked for, they would otherwise be left out without a word.
+void say_where_peers_do_not_run(const std::vector<bench::SceneEntry>& scenes,
+                                const bench::GridConfig& grid) {
+  if (grid.peers_on_all_scenes) return;
+  std::string peers;
+  for (const bench::EngineKind engine : grid.engines) {
+    if (bench::runs_our_settings(engine)) continue;
+    peers += (peers.empty() ? "" : ", ") + std::string(bench::to_string(engine));
+  }
+  std::string alone;
+  for (const bench::SceneEntry& entry : scenes) {
+    if (!entry.peers_by_default) alone += (alone.empty() ? "" : ", ") + entry.name;
+  }
+  if (peers.empty() || alone.empty()) return;
+  std::cerr << "physics-bench: " << peers << " run on their own scenes only (add "
+            << "--peers-everywhere to run them on every scene); ours alone on: " << alone
+            << '\n';
 }
 
 }  // namespace
@@ -105,7 +127,7 @@ int main(int argc, char** argv) {
                  "speed slows every engine alike (0: one run after another)")
       ->check(CLI::Range(0, 1000000));
   app.add_flag("--list", list, "List the scenes and exit");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit_code = bench::parse_flags(app, argc, argv)) return *exit_code;
 
   const std::vector<bench::SceneEntry> catalog = bench::scene_catalog(mode);
   if (list) {
@@ -155,11 +177,7 @@ int main(int argc, char** argv) {
   std::ofstream csv_file;
   if (!csv_path.empty() && !open_output(csv_file, csv_path)) return 1;
   std::ostream& csv = csv_path.empty() ? std::cout : csv_file;
-  if (csv_path.empty() && std::find(grid.engines.begin(), grid.engines.end(),
-                                    bench::EngineKind::Chipmunk) != grid.engines.end()) {
-    std::cerr << "physics-bench: Debian's Chipmunk prints a banner on stdout; use --csv FILE "
-                 "for a clean CSV\n";
-  }
+  bench::absorb_peer_banners();  // before the CSV's first line on stdout
   // Every output is opened before the first run: a bad path fails at once, not
   // after a run of many minutes.
   std::ofstream ratios;
@@ -169,6 +187,7 @@ int main(int argc, char** argv) {
     if (!open_output(timeline, timeline_path)) return 1;
     bench::write_timeline_header(timeline);
   }
+  say_where_peers_do_not_run(scenes, grid);
   bench::write_csv_header(csv);
   std::vector<bench::RunRow> rows;
   try {

@@ -73,7 +73,8 @@ int run_single(const Options& options) {
       fmt::print(stderr, "physics-client: session ended after {} snapshots: {}\n", printed, why);
       return kExitLost;
     }
-    fmt::print("{}\n", client_app::format_snapshot(*snapshot, options.json));
+    fmt::print("{}\n", client_app::format_snapshot(*snapshot, options.json,
+                                                    options.client.view.state_hash));
     for (const client::ContactEvent& event : snapshot->contact_events) {
       fmt::print("{}\n", client_app::format_contact_event(event, options.json));
     }

@@ -22,7 +22,7 @@ std::string format_welcome(const client::Welcome& welcome, bool json) {
       welcome.tick_rate, welcome.lockstep ? ", lockstep" : "", welcome.current_tick);
 }
 
-std::string format_snapshot(const client::Snapshot& snapshot, bool json) {
+std::string format_snapshot(const client::Snapshot& snapshot, bool json, bool with_hash) {
   const client::BodyState own = snapshot.own.value_or(client::BodyState{});
   // Doubles are printed in their shortest exact form ({}), so nothing is lost. The
   // hash is a hex string: JSON numbers past 2^53 lose digits in many parsers.
@@ -36,10 +36,10 @@ std::string format_snapshot(const client::Snapshot& snapshot, bool json) {
         snapshot.last_applied_input_tick, snapshot.bodies.size(), snapshot.records,
         snapshot.wire_bytes, snapshot.in_sync);
   }
-  return fmt::format(
-      "tick {} pos ({:.6f}, {:.6f}) vel ({:.6f}, {:.6f}) hash {:016x} ({} records, {} bytes)",
-      snapshot.tick, own.position.x, own.position.y, own.velocity.x, own.velocity.y,
-      snapshot.state_hash, snapshot.records, snapshot.wire_bytes);
+  const std::string hash = with_hash ? fmt::format(" hash {:016x}", snapshot.state_hash) : "";
+  return fmt::format("tick {} pos ({:.6f}, {:.6f}) vel ({:.6f}, {:.6f}){} ({} records, {} bytes)",
+                     snapshot.tick, own.position.x, own.position.y, own.velocity.x,
+                     own.velocity.y, hash, snapshot.records, snapshot.wire_bytes);
 }
 
 std::string format_contact_event(const client::ContactEvent& event, bool json) {

@@ -9,7 +9,9 @@
 namespace client_app {
 
 std::string format_welcome(const client::Welcome& welcome, bool json);
-std::string format_snapshot(const client::Snapshot& snapshot, bool json);
+// `with_hash`: the view asked for the state hash (--state-hash). Text leaves the hash
+// out otherwise (it would read 0000000000000000); JSON always has the field.
+std::string format_snapshot(const client::Snapshot& snapshot, bool json, bool with_hash);
 // One line per contact event (--contacts).
 std::string format_contact_event(const client::ContactEvent& event, bool json);
 std::string format_load_report(const client::LoadReport& report, bool json);

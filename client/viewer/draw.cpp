@@ -30,6 +30,11 @@ void fill_box(SDL_Renderer* renderer, const Camera& camera, client::Vec2 centre,
                        to_float(bottom_right.y - top_left.y)};
   set_colour(renderer, colour);
   SDL_RenderFillRectF(renderer, &rect);
+  // Only on boxes big enough to keep a colour inside the outline.
+  if (rect.w >= 4.0f && rect.h >= 4.0f) {
+    set_colour(renderer, kBoxOutline);
+    SDL_RenderDrawRectF(renderer, &rect);
+  }
 }
 
 void fill_circle(SDL_Renderer* renderer, const Camera& camera, client::Vec2 centre, double radius,

@@ -82,7 +82,9 @@ std::vector<std::string> LiveWorld::panel(const client::PlayoutFrame& frame,
                               kbits_per_second(), newest_age() * 1000.0,
                               buffer_ ? buffer_->delay() * 1000.0 : 0.0,
                               client::to_string(frame.status)));
-  lines.push_back(fmt::format("clients: at most {} players; {} joined, {} left while watching",
+  // The protocol names no body's player and sends no count of players: what the
+  // viewer sees is bodies added and removed (a player's body comes and goes with it).
+  lines.push_back(fmt::format("at most {} players; since watching: {} bodies added, {} removed",
                               welcome.max_players, shapes_.joined(), shapes_.left()));
   lines.push_back(shapes_.bodies_line(frame, followed));
   if (!connected()) lines.push_back("disconnected: " + error());

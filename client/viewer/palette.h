@@ -17,6 +17,9 @@ inline constexpr Rgb kStatic{118, 124, 136};   // grey: walls, floors, steps
 inline constexpr Rgb kDynamic{70, 160, 255};   // blue: moving
 inline constexpr Rgb kSleeping{120, 90, 170};  // violet: still in the two newest snapshots
 inline constexpr Rgb kFollowed{255, 168, 40};  // orange: the body the camera follows
+// A box's edge, one pixel inside it, in the background's colour: boxes stacked edge to
+// edge read as boxes, not as one block.
+inline constexpr Rgb kBoxOutline = kBackground;
 inline constexpr Rgb kText{235, 235, 235};
 inline constexpr Rgb kPanel{0, 0, 0};  // drawn at kPanelAlpha behind the text
 inline constexpr std::uint8_t kPanelAlpha = 170;

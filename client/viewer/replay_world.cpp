@@ -152,7 +152,7 @@ std::vector<std::string> ReplayWorld::panel(const client::PlayoutFrame& frame,
       "{}  {:g}x  ticks {} to {}  snapshot {} of {}", paused_ ? "paused" : "playing", speed_,
       recording_.snapshots.front().snapshot.tick, recording_.snapshots.back().snapshot.tick,
       index_at(time_) + 1, recording_.snapshots.size()));
-  lines.push_back(fmt::format("clients: at most {} players; {} joined, {} left while recording",
+  lines.push_back(fmt::format("at most {} players; while recording: {} bodies added, {} removed",
                               welcome.max_players, shapes_.joined(), shapes_.left()));
   lines.push_back(shapes_.bodies_line(frame, followed));
   return lines;

@@ -7,6 +7,7 @@
 
 #include "client_ids.h"
 #include "handshake.h"
+#include "log_fields.h"
 #include "server_impl.h"
 #include "wire/messages.h"
 
@@ -48,7 +49,10 @@ void Server::Impl::do_accept() {
     auto session = std::make_shared<Session>(std::move(socket), id, *this, limits_);
     sessions_.emplace(id, session);
     publish_connection_counts();
-    if (log_admits("connection")) spdlog::info("connection {} from {}", id, session->peer());
+    if (log_admits("connection")) {
+      log_with(spdlog::level::info, {.client = id, .address = session->peer()},
+               "connection {} from {}", id, session->peer());
+    }
     session->start();
     refuse_if_too_many_pending(*session);
     do_accept();
@@ -81,7 +85,10 @@ void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
 
 void Server::Impl::refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text) {
   update_stats([](ServerStats& s) { ++s.dropped[DropReason::AddressLimited]; });
-  if (log_admits("refused at accept")) spdlog::info("refused a connection: {}", text);
+  if (log_admits("refused at accept")) {
+    log_with(spdlog::level::info, {.reason = to_string(DropReason::AddressLimited)},
+             "refused a connection: {}", text);
+  }
   std::error_code ignored;
   socket.non_blocking(true, ignored);
   const std::string frame =
@@ -100,15 +107,18 @@ bool Server::Impl::log_admits(const char* cause) {
 void Server::Impl::on_throttled(Session& session) {
   update_stats([](ServerStats& s) { ++s.throttled_reads; });
   if (log_admits("over its rate")) {
-    spdlog::info("connection {} ({}) is over its byte or message rate: reading paused",
-                 session.id(), session.peer());
+    log_with(spdlog::level::info, {.client = session.id(), .address = session.peer()},
+             "connection {} ({}) is over its byte or message rate: reading paused", session.id(),
+             session.peer());
   }
 }
 
 void Server::Impl::on_handler_failed(Session& session, const char* what) {
   if (log_admits("handler failed")) {
-    spdlog::error("handling a message of connection {} ({}) failed: {}; closing it", session.id(),
-                  session.peer(), what);
+    log_with(spdlog::level::err,
+             {.client = session.id(), .address = session.peer(), .reason = what},
+             "handling a message of connection {} ({}) failed: {}; closing it", session.id(),
+             session.peer(), what);
   }
 }
 
@@ -121,23 +131,24 @@ void Server::Impl::on_closed(Session& session, DropReason reason) {
   }
   const Handshake::Member member =
       session.joined() ? handshake_.leave(id) : Handshake::Member::None;  // frees its seat
+  const LogFields left{.client = id, .address = session.peer(), .reason = to_string(reason)};
   if (member == Handshake::Member::Spectator) {
-    spdlog::info("spectator {} '{}' ({}) left: {}", id, session.name(), session.peer(),
-                 to_string(reason));
+    log_with(spdlog::level::info, left, "spectator {} '{}' ({}) left: {}", id, session.name(),
+             session.peer(), to_string(reason));
   } else if (member == Handshake::Member::Lobby) {
-    spdlog::info("client {} '{}' ({}) left the lobby: {}", id, session.name(), session.peer(),
-                 to_string(reason));
+    log_with(spdlog::level::info, left, "client {} '{}' ({}) left the lobby: {}", id,
+             session.name(), session.peer(), to_string(reason));
   } else if (session.joined()) {
     // A straggler has left the world already (drop_stragglers).
     if (simulation_.leave(id)) feeds_.leave(id);
     input_timing_.forget(id);
     stragglers_.forget(id);
     told_clamped_.erase(id);
-    spdlog::info("client {} '{}' ({}) left: {}", id, session.name(), session.peer(),
-                 to_string(reason));
+    log_with(spdlog::level::info, left, "client {} '{}' ({}) left: {}", id, session.name(),
+             session.peer(), to_string(reason));
   } else if (log_admits("closed before joining")) {
-    spdlog::info("connection {} ({}) closed before joining: {}", id, session.peer(),
-                 to_string(reason));
+    log_with(spdlog::level::info, left, "connection {} ({}) closed before joining: {}", id,
+             session.peer(), to_string(reason));
   }
   update_stats([&](ServerStats& s) { ++s.dropped[reason]; });
   sessions_.erase(id);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "handshake.h"
+#include "log_fields.h"
 #include "server_impl.h"
 #include "snapshot_encoder.h"
 #include "wire/view_settings.h"
@@ -33,9 +34,10 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
       session.set_joined(decision.name);
       address_limits_.on_joined(session.address());
       publish_connection_counts();
-      spdlog::info("client {} '{}' ({}) seated in the lobby at seat {} ({} of {})", session.id(),
-                   session.name(), session.peer(), decision.seat, handshake_.seats().taken(),
-                   handshake_.seats().size());
+      log_with(spdlog::level::info, {.client = session.id(), .address = session.peer()},
+               "client {} '{}' ({}) seated in the lobby at seat {} ({} of {})", session.id(),
+               session.name(), session.peer(), decision.seat, handshake_.seats().taken(),
+               handshake_.seats().size());
       if (decision.lobby_full) open_lobby();
       return;
     case HelloDecision::Outcome::Player:
@@ -51,8 +53,10 @@ void Server::Impl::welcome_player(Session& session, phys::BodyId body,
   feeds_.join(session.id(), view, body.packed());
   publish_connection_counts();
   const std::uint32_t seat = handshake_.seats().seat_of(session.id()).value_or(0);
-  spdlog::info("client {} '{}' ({}) joined at tick {} in seat {} with body {}", session.id(),
-               session.name(), session.peer(), simulation_.current_tick(), seat, body.packed());
+  log_with(spdlog::level::info,
+           {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
+           "client {} '{}' ({}) joined at tick {} in seat {} with body {}", session.id(),
+           session.name(), session.peer(), simulation_.current_tick(), seat, body.packed());
   physics::wire::ServerMessage welcome =
       make_welcome(simulation_, session.id(), body, config_.lockstep, wire::to_wire(view),
                    static_cast<std::uint32_t>(config_.max_clients));
@@ -87,8 +91,10 @@ void Server::Impl::open_lobby() {
 void Server::Impl::welcome_spectator(Session& session, const wire::ViewSettings& view) {
   feeds_.join(session.id(), view, std::nullopt);
   publish_connection_counts();
-  spdlog::info("spectator {} '{}' ({}) joined at tick {}", session.id(), session.name(),
-               session.peer(), simulation_.current_tick());
+  log_with(spdlog::level::info,
+           {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
+           "spectator {} '{}' ({}) joined at tick {}", session.id(), session.name(), session.peer(),
+           simulation_.current_tick());
   physics::wire::ServerMessage welcome =
       make_welcome(simulation_, session.id(), phys::BodyId::invalid(), config_.lockstep,
                    wire::to_wire(view), static_cast<std::uint32_t>(config_.max_clients));

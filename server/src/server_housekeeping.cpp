@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "log_fields.h"
 #include "server_impl.h"
 
 namespace server {
@@ -41,7 +42,9 @@ void Server::Impl::log_stats_line() {
   const ServerStats s = stats();
   const double mean_ms =
       s.ticks_stepped > 0 ? s.total_tick_seconds * 1e3 / static_cast<double>(s.ticks_stepped) : 0.0;
-  spdlog::info(
+  // "bytes": sent and received together; the prose has each.
+  log_with(
+      spdlog::level::info, {.tick = s.current_tick, .bytes = s.bytes_sent + s.bytes_received},
       "stats: tick {}, {} players, {} in lobby, {} spectators, {} connections; tick mean {:.3f} "
       "ms, "
       "max {:.3f} ms, {} overruns, {} dropped steps; {} bytes in, {} out; {} lockstep timeouts; "

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "handshake.h"
+#include "log_fields.h"
 #include "server_impl.h"
 #include "wire/messages.h"
 
@@ -51,7 +52,10 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       on_full_state_request(session);
       return;
     case Kind::kBye:
-      spdlog::info("client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
+      log_with(spdlog::level::info,
+               {.client = session.id(), .address = session.peer(),
+                .reason = to_string(DropReason::ClientBye)},
+               "client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
       session.close_now(DropReason::ClientBye);
       return;
     case Kind::KIND_NOT_SET:

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <string>
 
+#include "log_fields.h"
 #include "server_impl.h"
 
 namespace server {
@@ -36,8 +37,9 @@ void Server::Impl::guard_tick(Tick&& tick) {
   try {
     tick();
   } catch (const std::exception& error) {
-    spdlog::critical("tick {} failed: {}; shutting down", simulation_.current_tick() + 1,
-                     error.what());
+    log_with(spdlog::level::critical,
+             {.tick = simulation_.current_tick() + 1, .reason = error.what()},
+             "tick {} failed: {}; shutting down", simulation_.current_tick() + 1, error.what());
     update_stats([&](ServerStats& s) { s.tick_failure = error.what(); });
     begin_shutdown();
   }
@@ -49,8 +51,9 @@ void Server::Impl::on_tick_timer() {
   if (frame.dropped_steps > 0) {
     update_stats([&](ServerStats& s) { s.dropped_steps += frame.dropped_steps; });
     if (log_admits("dropped steps"))
-      spdlog::warn("fell behind: {} step(s) dropped after tick {}", frame.dropped_steps,
-                   simulation_.current_tick());
+      log_with(spdlog::level::warn, {.tick = simulation_.current_tick()},
+               "fell behind: {} step(s) dropped after tick {}", frame.dropped_steps,
+               simulation_.current_tick());
   }
   // The next wake-up is the previous one plus a period, never "now + period", so
   // the timer's own latency does not accumulate into drift.
@@ -111,9 +114,9 @@ void Server::Impl::try_lockstep() {
       for (const ClientId client : result.held_over) {
         missing += (missing.empty() ? "" : ", ") + std::to_string(client);
       }
-      spdlog::warn(
-          "lockstep tick {} stepped after the {} ms timeout without input from client(s) {}",
-          result.tick, config_.lockstep_timeout.count(), missing);
+      log_with(spdlog::level::warn, {.tick = result.tick, .reason = "lockstep timeout"},
+               "lockstep tick {} stepped after the {} ms timeout without input from client(s) {}",
+               result.tick, config_.lockstep_timeout.count(), missing);
     }
     drop_stragglers(result, timed_out);
     // One tick per handler: when clients sent many ticks ahead, the write
@@ -151,8 +154,9 @@ TickResult Server::Impl::run_one_tick(
   // At most a few lines a second (counted when suppressed): a scene too heavy for
   // its tick rate overruns every tick.
   if (overran && log_admits("tick overrun")) {
-    spdlog::warn("tick {} overran: {:.3f} ms for a {:.3f} ms period", result.tick, seconds * 1e3,
-                 period * 1e3);
+    log_with(spdlog::level::warn, {.tick = result.tick, .reason = "tick overrun"},
+             "tick {} overran: {:.3f} ms for a {:.3f} ms period", result.tick, seconds * 1e3,
+             period * 1e3);
   }
   const FeedStats& feed = feeds_.stats();
   std::size_t input_bytes = 0;
@@ -234,8 +238,13 @@ void Server::Impl::drop_stragglers(const TickResult& result, bool timed_out) {
       publish_connection_counts();
     }
     stragglers_.forget(id);
-    spdlog::warn("client {} '{}' ({}) dropped: no input at {} lockstep timeouts in a row", id,
-                 session->name(), session->peer(), stragglers_.limit());
+    log_with(spdlog::level::warn,
+             {.client = id,
+              .address = session->peer(),
+              .tick = simulation_.current_tick(),
+              .reason = to_string(DropReason::LockstepStraggler)},
+             "client {} '{}' ({}) dropped: no input at {} lockstep timeouts in a row", id,
+             session->name(), session->peer(), stragglers_.limit());
     session->close_with_error(physics::wire::ERROR_LOCKSTEP_STRAGGLER,
                               "no input at " + std::to_string(stragglers_.limit()) +
                                   " consecutive lockstep timeouts (--lockstep-max-timeouts)",

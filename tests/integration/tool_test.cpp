@@ -60,6 +60,25 @@ TEST(Tool, PrintsOneJsonLinePerSnapshot) {
   EXPECT_EQ(snapshots, 5u);
 }
 
+// Text lines name the state hash only when it was asked for (--state-hash): without
+// it the server sends none, and a hash of zeros would read as one.
+TEST(Tool, TextLinesShowTheHashOnlyWhenAskedFor) {
+  RunningServer server(test_config(), scene::default_scene());
+  for (const bool asked : {false, true}) {
+    const CommandRun run = run_command(
+        client_command(server, std::string("--ticks 3 --accel 1,0") + (asked ? " --state-hash" : "")));
+    ASSERT_EQ(run.exit_code, 0);
+    std::size_t snapshots = 0;
+    for (const auto& line : run.lines) {
+      if (line.rfind("tick ", 0) != 0) continue;
+      ++snapshots;
+      EXPECT_EQ(line.find(" hash ") != std::string::npos, asked) << line;
+      EXPECT_EQ(line.find("hash 0000000000000000"), std::string::npos) << line;
+    }
+    EXPECT_EQ(snapshots, 3u);
+  }
+}
+
 // The state hash of the last snapshot line of a --json run ("" when there is none).
 std::string last_state_hash(const CommandRun& run) {
   const std::string key = "\"state_hash\":\"";

@@ -3,6 +3,8 @@
 #include "server/log_format.h"
 
 #include <gtest/gtest.h>
+
+#include "log_fields.h"
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -44,6 +46,51 @@ TEST(LogFormat, TextLineIsTheMessageAsItIs) {
       stderr_of(server::LogFormat::Text, [] { spdlog::info("plain \"quoted\" text"); });
   EXPECT_NE(text.find("plain \"quoted\" text"), std::string::npos) << text;
   EXPECT_EQ(text.find("\"message\""), std::string::npos) << text;
+}
+
+// A line's fields follow its message as members of the object, each only when the
+// line has it; text keeps the prose alone.
+TEST(LogFormat, JsonLineCarriesTheLinesFields) {
+  const std::string line = stderr_of(server::LogFormat::Json, [] {
+    server::log_with(spdlog::level::info,
+                     {.client = 7, .address = "10.0.0.2:4100", .tick = 1200,
+                      .reason = "said \"bye\"", .bytes = 4096},
+                     "client {} left", 7);
+  });
+  EXPECT_NE(line.find("\"message\":\"client 7 left\",\"client_id\":7,\"address\":\"10.0.0.2:"
+                      "4100\",\"tick\":1200,\"reason\":\"said \\\"bye\\\"\",\"bytes\":4096}\n"),
+            std::string::npos)
+      << line;
+  const std::string some = stderr_of(server::LogFormat::Json, [] {
+    server::log_with(spdlog::level::warn, {.tick = 5}, "tick {} overran", 5);
+  });
+  EXPECT_NE(some.find("\"message\":\"tick 5 overran\",\"tick\":5}\n"), std::string::npos) << some;
+  // A line logged without fields, after one with them, has none.
+  const std::string none =
+      stderr_of(server::LogFormat::Json, [] { spdlog::info("no fields"); });
+  EXPECT_NE(none.find("\"message\":\"no fields\"}\n"), std::string::npos) << none;
+  const std::string text = stderr_of(server::LogFormat::Text, [] {
+    server::log_with(spdlog::level::info, {.client = 7}, "client {} left", 7);
+  });
+  EXPECT_NE(text.find("client 7 left"), std::string::npos) << text;
+  EXPECT_EQ(text.find("client_id"), std::string::npos) << text;
+}
+
+// server::set_log_level: what a program embedding the server (a user's test) calls
+// to keep the server's info lines (every join and leave) out of its output.
+TEST(LogLevel, SetLogLevelHoldsBackLessSevereLines) {
+  const spdlog::level::level_enum before = spdlog::get_level();
+  server::set_log_level(server::LogLevel::Error);
+  EXPECT_EQ(spdlog::get_level(), spdlog::level::err);
+  const std::string written = stderr_of(server::LogFormat::Text, [] {
+    spdlog::warn("a warning under level error");
+    spdlog::error("an error under level error");
+  });
+  EXPECT_EQ(written.find("a warning"), std::string::npos) << written;
+  EXPECT_NE(written.find("an error"), std::string::npos) << written;
+  server::set_log_level(server::LogLevel::Off);
+  EXPECT_EQ(spdlog::get_level(), spdlog::level::off);
+  spdlog::set_level(before);
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ std::uint64_t hash_after(const scenes::SceneSpec& scene, int steps) {
   return world.state_hash();
 }
 
-std::vector<Expected> expected_scenes() {
+std::vector<Expected> build_expected_scenes() {
   using scenes::RainedCircles;
   using scenes::StageVariant;
   return {
@@ -114,10 +114,17 @@ std::vector<Expected> expected_scenes() {
   };
 }
 
+// Built once a process: the test names are made at start-up, in every process that
+// runs any test of this binary, and the scenes hold some 100,000 bodies.
+const std::vector<Expected>& expected_scenes() {
+  static const std::vector<Expected> scenes = build_expected_scenes();
+  return scenes;
+}
+
 class SceneLibrary : public ::testing::TestWithParam<std::size_t> {};
 
 TEST_P(SceneLibrary, BuildsTheBodiesTheTestsAndBenchReliedOn) {
-  const Expected e = expected_scenes()[GetParam()];
+  const Expected& e = expected_scenes()[GetParam()];
   EXPECT_EQ(e.scene.bodies.size(), e.bodies);
   EXPECT_EQ(fingerprint(e.scene), e.fingerprint)
       << "fingerprint 0x" << std::hex << fingerprint(e.scene);

@@ -1,5 +1,6 @@
-// The checker's order: the scene's name, its world, its bodies, its grids, then the
-// player and its spawn points; the first fault ends the check.
+// The checker's order: the scene's name, its world, its bodies, its grids, whether
+// any bodies overlap, then the player and its spawn points; the first fault ends the
+// check.
 #include "scene_checker.h"
 
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include "field_checker.h"
 #include "field_path.h"
 #include "grid_checks.h"
+#include "overlap_checks.h"
 #include "world_checks.h"
 
 namespace scene::detail {
@@ -66,8 +68,10 @@ SceneResult check_scene(const proto::Scene& message, std::string_view origin,
     return check.take_error();
   }
   def.bodies.reserve(static_cast<std::size_t>(message.bodies_size()));
+  std::vector<BodySource> sources;
   for (int i = 0; i < message.bodies_size(); ++i) {
     const FieldPath path = FieldPath().child("bodies", i);
+    sources.push_back({def.bodies.size(), path, false});
     phys::BodyDef body;
     if (!check_body(check, message.bodies(i), path, def.world, false, &body) ||
         !check_inside(check, path.child("position"), def.world, body, "the body"))
@@ -75,9 +79,11 @@ SceneResult check_scene(const proto::Scene& message, std::string_view origin,
     def.bodies.push_back(body);
   }
   for (int i = 0; i < message.grids_size(); ++i) {
-    if (!check_grid(check, message.grids(i), FieldPath().child("grids", i), &def))
+    sources.push_back({def.bodies.size(), FieldPath().child("grids", i), true});
+    if (!check_grid(check, message.grids(i), sources.back().path, &def))
       return check.take_error();
   }
+  if (!check_overlaps(check, def, sources)) return check.take_error();
   if (!check_spawns(check, message, &def)) return check.take_error();
   return def;
 }
