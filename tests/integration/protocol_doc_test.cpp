@@ -91,11 +91,12 @@ TEST(ProtocolDoc, StateHashExample) {
   const phys::BodyId floor_id = world.add_body(floor);
   const phys::BodyId ball_id = world.add_body(ball);
   const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+  // One body a line, its ten words in the page's order.
+  // clang-format off
   const std::vector<std::uint64_t> words = {
-      floor_id.packed(), 0x001, bits(0.0), bits(-0.5), bits(0.0), bits(0.0), bits(0.0),
-      bits(0.0), bits(10.0), bits(0.5),
-      ball_id.packed(), 0x100, bits(1.5), bits(2.0), bits(3.0), bits(4.0), bits(0.0),
-      bits(2.5), bits(0.25), bits(0.25)};
+      floor_id.packed(), 0x001, bits(0.0), bits(-0.5), bits(0.0), bits(0.0), bits(0.0), bits(0.0), bits(10.0), bits(0.5),
+      ball_id.packed(),  0x100, bits(1.5), bits(2.0),  bits(3.0), bits(4.0), bits(0.0), bits(2.5), bits(0.25), bits(0.25)};
+  // clang-format on
   EXPECT_EQ(fnv1a_over_words(words), world.state_hash());
   const std::string page = protocol_page::text();
   EXPECT_NE(page.find(hex64(world.state_hash())), std::string::npos) << hex64(world.state_hash());

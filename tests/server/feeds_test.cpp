@@ -225,7 +225,8 @@ TEST_P(ViewSettingsField, ClientsDifferingInItAloneNeverShareAView) {
 INSTANTIATE_TEST_SUITE_P(
     Feeds, ViewSettingsField,
     ::testing::Values(
-        OneField{"encoding", [](wire::ViewSettings& s) { s.encoding = physics::wire::ENCODING_EXACT; }},
+        OneField{"encoding",
+                 [](wire::ViewSettings& s) { s.encoding = physics::wire::ENCODING_EXACT; }},
         OneField{"position_precision", [](wire::ViewSettings& s) { s.quantum.position = 0.0005; }},
         OneField{"velocity_precision", [](wire::ViewSettings& s) { s.quantum.velocity = 0.0005; }},
         OneField{"position_tolerance", [](wire::ViewSettings& s) { s.position_tolerance = 0.001; }},
@@ -248,7 +249,7 @@ INSTANTIATE_TEST_SUITE_P(
         OneField{"byte_budget", [](wire::ViewSettings& s) { s.byte_budget = 1u << 20; }},
         OneField{"state_hash", [](wire::ViewSettings& s) { s.state_hash = true; }},
         OneField{"view_hash_interval", [](wire::ViewSettings& s) { s.view_hash_interval = 1; }}),
-    [](const ::testing::TestParamInfo<OneField>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<OneField>& field) { return std::string(field.param.name); });
 
 }  // namespace
 }  // namespace server_test

@@ -225,7 +225,9 @@ TEST(Views, AFullStateUnderAByteBudgetCompletesWithinItsBound) {
     EXPECT_TRUE(s.has_view_hash() || n > 1);
     const std::size_t lacking = run.frame().bodies.size() - c.held.bodies().size();
     ASSERT_EQ(s.bodies_missing(), lacking) << "snapshot " << n;
-    if (n > 1 && lacking > 0) ASSERT_GE(before - s.bodies_missing(), per_snapshot);
+    if (n > 1 && lacking > 0) {
+      ASSERT_GE(before - s.bodies_missing(), per_snapshot);
+    }
     before = s.bodies_missing();
     if (lacking == 0) complete_after = n;
   }

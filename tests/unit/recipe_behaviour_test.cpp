@@ -45,7 +45,8 @@ TEST(RecipeBehaviour, ACircleOnAnAwakeDynamicBoxStaysOnTop) {
 TEST(RecipeBehaviour, ABoxMovingIntoAStepIsResolvedOnYBeforeX) {
   World world;
   add_or_fail(world, box_def({0.0, -0.5}, {10.0, 0.5}, Motion::Static));  // floor, top 0
-  add_or_fail(world, box_def({2.0, 0.25}, {1.45, 0.25}, Motion::Static));  // step [0.55, 3.45] x [0, 0.5]
+  add_or_fail(world,
+              box_def({2.0, 0.25}, {1.45, 0.25}, Motion::Static));  // step [0.55, 3.45] x [0, 0.5]
   BodyDef def = box_def({0.0, 1.05}, {0.5, 0.5});
   def.velocity = {6.0, -12.0};
   const BodyId box = add_or_fail(world, def);

@@ -108,8 +108,9 @@ std::string read_exact(const physics::wire::ExactBodies& list, std::vector<Recor
 
 // ENCODING_FULL's bodies: exact values the client holds as they are (mode Hold), so
 // that the full encoding has a view hash as the others do.
-std::string read_full_bodies(const google::protobuf::RepeatedPtrField<physics::wire::BodyState>& list,
-                             std::vector<Record>& records) {
+std::string read_full_bodies(
+    const google::protobuf::RepeatedPtrField<physics::wire::BodyState>& list,
+    std::vector<Record>& records) {
   bool first = true;
   std::uint64_t last = 0;
   for (const physics::wire::BodyState& state : list) {
@@ -215,8 +216,8 @@ std::string Reconstruction::apply(const physics::wire::Snapshot& snapshot,
   }
   std::vector<std::uint64_t> gone;
   if (!decode_id_gaps(snapshot.left_gaps(), gone)) return "left body ids do not ascend";
-  // Quantized, velocity, exact records, then full-encoding bodies, each list ascending: one list sorted by
-  // id (stable, so a body in several lists gets its records in that order).
+  // Quantized, velocity, exact records, then full-encoding bodies, each list ascending: one list
+  // sorted by id (stable, so a body in several lists gets its records in that order).
   std::stable_sort(records.begin(), records.end(),
                    [](const Record& a, const Record& b) { return a.id < b.id; });
 
