@@ -62,18 +62,20 @@ TEST(RecipeBehaviour, ABoxMovingIntoAStepIsResolvedOnYBeforeX) {
   EXPECT_NEAR(later.position.y, 0.5, 0.01) << "on the floor, not on the step";
 }
 
-// A lone body in a world without gravity: still_time grows by the step's dt each
-// step while the body stays within sleep_speed * sleep_time of where its window
-// began. At rest, or slower than sleep_speed, it is ready after sleep_time: asleep
-// after step 30 at 60 Hz (0.5 s), give or take the rounding of the sum of thirty
-// steps. Faster than sleep_speed (1.5 times: slower than twice it), it leaves that
-// radius within every window and is never asleep.
+// Lone bodies in a world without gravity: a body's stillness window starts at its
+// first step (a new body's window is anchored at the origin, so that step moves the
+// anchor to it), and its still time then grows by the step's dt each step while it
+// stays within sleep_speed * sleep_time of the anchor. At rest, or slower than
+// sleep_speed, it is ready once still for sleep_time: awake after step 30 at 60 Hz
+// (29 still steps), asleep after step 32 at the latest (30 still steps, 0.5 s, give
+// or take the rounding of their sum). Faster than sleep_speed (1.5 times: slower than
+// twice it), it leaves that radius within every window and is never asleep.
 TEST(RecipeBehaviour, ABodyFallsAsleepAtSleepTimeAndOneFasterThanSleepSpeedNever) {
   WorldSettings settings;
   settings.gravity = {0.0, 0.0};
   World world(settings);
   const double v = settings.sleep_speed;
-  const BodyId resting = add_or_fail(world, circle_def({0.0, 0.0}, 0.5));
+  const BodyId resting = add_or_fail(world, circle_def({5.0, 0.0}, 0.5));
   BodyDef slow = circle_def({0.0, 10.0}, 0.5);
   slow.velocity = {0.5 * v, 0.0};
   const BodyId creeping = add_or_fail(world, slow);
@@ -82,7 +84,7 @@ TEST(RecipeBehaviour, ABodyFallsAsleepAtSleepTimeAndOneFasterThanSleepSpeedNever
   const BodyId moving = add_or_fail(world, fast);
   const int steps_to_sleep = static_cast<int>(std::lround(settings.sleep_time / kDt));
   ASSERT_EQ(steps_to_sleep, 30);
-  for (int step = 1; step <= steps_to_sleep - 1; ++step) world.step(kDt);
+  for (int step = 1; step <= steps_to_sleep; ++step) world.step(kDt);
   EXPECT_TRUE(world.body(resting)->awake) << "asleep before sleep_time";
   EXPECT_TRUE(world.body(creeping)->awake) << "asleep before sleep_time";
   world.step(kDt);
