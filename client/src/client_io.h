@@ -46,8 +46,8 @@ struct Client::Held {
   wire::Reconstruction reconstruction;
   wire::Predictor predictor;
   wire::Quantum quantum;
-  Encoding encoding = Encoding::Predicted;
   std::uint64_t last_applied_input_tick = 0;
+  bool in_sync = true;  // as of the last snapshot that carried a view hash
   bool has_applied_input = false;
 };
 

@@ -96,7 +96,6 @@ void Client::handle_frame(const std::string& frame) {
       held_->predictor =
           wire::Predictor(welcome_.tick_rate, welcome_.gravity.x, welcome_.gravity.y);
       held_->quantum = {welcome_.view.position_precision, welcome_.view.velocity_precision};
-      held_->encoding = welcome_.view.encoding;
       state_ = ConnectionState::Connected;
       return;
     case Kind::kSnapshot:
@@ -140,37 +139,33 @@ void Client::on_snapshot(const physics::wire::Snapshot& message, std::size_t wir
   }
   snapshot.has_applied_input = held.has_applied_input;
   snapshot.last_applied_input_tick = held.last_applied_input_tick;
-  if (held.encoding == Encoding::Full) {
-    snapshot.bodies.reserve(static_cast<std::size_t>(message.bodies_size()));
-    for (const auto& body : message.bodies()) {
-      snapshot.bodies.push_back({body.body_id(), {body.x(), body.y()}, {body.vx(), body.vy()}});
-    }
-    snapshot.records = snapshot.bodies.size();
-  } else {
-    const std::string problem = held.reconstruction.apply(message, held.predictor, held.quantum);
-    if (!problem.empty()) {
-      fail(ConnectionState::ProtocolError,
-           "server sent a snapshot that does not apply: " + problem);
-      return;
-    }
-    snapshot.records = static_cast<std::size_t>(message.quantized().id_gaps_size() +
-                                                message.velocities().id_gaps_size() +
-                                                message.exact().id_gaps_size());
-    const auto& bodies = held.reconstruction.bodies();
-    snapshot.bodies.reserve(bodies.size());
-    for (const wire::PredictedBody& b : bodies) {
-      snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
-    }
-    if (message.full()) {
-      full_state_asked_ = false;
-      ++stats_.full_states_received;
-    }
-    snapshot.in_sync = held.reconstruction.hash() == message.view_hash();
-    if (!snapshot.in_sync) {
+  const std::string problem = held.reconstruction.apply(message, held.predictor, held.quantum);
+  if (!problem.empty()) {
+    fail(ConnectionState::ProtocolError, "server sent a snapshot that does not apply: " + problem);
+    return;
+  }
+  snapshot.records = static_cast<std::size_t>(
+      message.quantized().id_gaps_size() + message.velocities().id_gaps_size() +
+      message.exact().id_gaps_size() + message.bodies_size());
+  const auto& bodies = held.reconstruction.bodies();
+  snapshot.bodies.reserve(bodies.size());
+  for (const wire::PredictedBody& b : bodies) {
+    snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
+  }
+  if (message.full()) {
+    full_state_asked_ = false;
+    ++stats_.full_states_received;
+  }
+  // The hash comes with every k-th snapshot (view_hash_interval); in between, the
+  // last comparison holds.
+  if (message.has_view_hash()) {
+    held.in_sync = held.reconstruction.hash() == message.view_hash();
+    if (!held.in_sync) {
       ++stats_.desyncs;
       if (!full_state_asked_ && !request_full_state()) return;
     }
   }
+  snapshot.in_sync = held.in_sync;
   if (!welcome_.spectator) {
     if (const BodyState* own = snapshot.find(welcome_.body_id)) snapshot.own = *own;
   }

@@ -23,6 +23,7 @@ std::variant<ClientRecording, std::string> decode(const recording::LoadedRecordi
   wire::Quantum quantum;
   bool has_applied_input = false;
   std::uint64_t last_applied_input_tick = 0;
+  bool in_sync = true;  // as of the last snapshot that carried a view hash
   std::size_t states = 0;
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     const physics::recording::Record& record = file.records[i];
@@ -62,20 +63,15 @@ std::variant<ClientRecording, std::string> decode(const recording::LoadedRecordi
       last_applied_input_tick = wire_snapshot.last_applied_input_tick();
     snapshot.has_applied_input = has_applied_input;
     snapshot.last_applied_input_tick = last_applied_input_tick;
-    if (out.welcome.view.encoding == Encoding::Full) {
-      for (const auto& body : wire_snapshot.bodies())
-        snapshot.bodies.push_back({body.body_id(), {body.x(), body.y()}, {body.vx(), body.vy()}});
-      snapshot.records = snapshot.bodies.size();
-    } else {
-      const std::string problem = reconstruction.apply(wire_snapshot, predictor, quantum);
-      if (!problem.empty()) return at(offset, "a Snapshot that does not apply: " + problem);
-      snapshot.records = static_cast<std::size_t>(wire_snapshot.quantized().id_gaps_size() +
-                                                  wire_snapshot.velocities().id_gaps_size() +
-                                                  wire_snapshot.exact().id_gaps_size());
-      for (const wire::PredictedBody& b : reconstruction.bodies())
-        snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
-      snapshot.in_sync = reconstruction.hash() == wire_snapshot.view_hash();
-    }
+    const std::string problem = reconstruction.apply(wire_snapshot, predictor, quantum);
+    if (!problem.empty()) return at(offset, "a Snapshot that does not apply: " + problem);
+    snapshot.records = static_cast<std::size_t>(
+        wire_snapshot.quantized().id_gaps_size() + wire_snapshot.velocities().id_gaps_size() +
+        wire_snapshot.exact().id_gaps_size() + wire_snapshot.bodies_size());
+    for (const wire::PredictedBody& b : reconstruction.bodies())
+      snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
+    if (wire_snapshot.has_view_hash()) in_sync = reconstruction.hash() == wire_snapshot.view_hash();
+    snapshot.in_sync = in_sync;
     if (!out.welcome.spectator) {
       if (const BodyState* own = snapshot.find(out.welcome.body_id)) snapshot.own = *own;
     }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <limits>
 #include <vector>
 
 namespace server {
@@ -29,7 +28,15 @@ struct Candidate {
   const PredictedBody* held = nullptr;  // null: the client holds no state for it
   double priority = 0.0;
   std::size_t bytes = 0;  // an estimate of its record's size
+  bool own = false;
 };
+
+// Under a byte budget: the own body first, then the bodies the client does not hold
+// (so that a full state completes in a bounded number of snapshots), then by priority.
+int budget_tier(const Candidate& c) {
+  if (c.own) return 0;
+  return c.held == nullptr ? 1 : 2;
+}
 
 double largest_error(const TruthBody& t, const PredictedBody& m, double position_scale,
                      double velocity_scale) {
@@ -159,7 +166,10 @@ bool View::in_interest(const TruthBody& body, const TruthBody* own) const {
   return false;
 }
 
+// Every snapshot of the full encoding is a full state; the client holds its bodies
+// as sent (mode Hold), and the view hash covers them as in the other encodings.
 void View::update_full_encoding(const TruthFrame& frame, std::optional<std::uint64_t> own) {
+  message_.set_full(true);
   const TruthBody* own_truth = own ? frame.find(*own) : nullptr;
   for (const TruthBody& t : frame.bodies) {
     if (!(own && t.id == *own) && !in_interest(t, own_truth)) continue;
@@ -171,6 +181,9 @@ void View::update_full_encoding(const TruthFrame& frame, std::optional<std::uint
     state->set_vy(t.vy);
     ++stats_.records;
   }
+  const std::string error = mirror_.apply(message_, predictor_, settings_.quantum);
+  (void)error;  // ascending ids of finite states: well formed
+  message_.set_view_hash(mirror_.hash());
   delta_has_news_ = true;
 }
 
@@ -228,12 +241,13 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
       const double distance = std::hypot(t.x - own_truth->x, t.y - own_truth->y);
       c.priority /= 1.0 + distance / kPriorityHalfDistance;
     }
-    if (is_own) c.priority = std::numeric_limits<double>::infinity();
+    c.own = is_own;
     candidates.push_back(c);
   }
   while (m < held.size()) left.push_back(held[m++].id);
 
   // The byte budget: the highest priorities first, each with what it waited.
+  bodies_missing_ = 0;
   if (settings_.byte_budget > 0) {
     const PredictedBody zero{};
     for (Candidate& c : candidates) {
@@ -248,18 +262,26 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
     }
     std::vector<Candidate> ranked = candidates;
     std::stable_sort(ranked.begin(), ranked.end(), [](const Candidate& a, const Candidate& b) {
-      return a.priority > b.priority;
+      const int ta = budget_tier(a);
+      const int tb = budget_tier(b);
+      return ta != tb ? ta < tb : a.priority > b.priority;
     });
     std::map<std::uint64_t, double> still_waiting;
     std::vector<std::uint64_t> chosen;
     std::size_t used = 0;
+    bool missing_sent = false;
     for (const Candidate& c : ranked) {
-      if (used + c.bytes <= settings_.byte_budget || chosen.empty()) {
+      // One body not held goes in every snapshot, whatever its size: the bound on
+      // completing a full state (docs/PROTOCOL.md, section 5.9) rests on it.
+      const bool first_missing = c.held == nullptr && !c.own && !missing_sent;
+      if (used + c.bytes <= settings_.byte_budget || chosen.empty() || first_missing) {
         used += c.bytes;
         chosen.push_back(c.truth->id);
+        if (c.held == nullptr && !c.own) missing_sent = true;
       } else {
         still_waiting.emplace(c.truth->id, c.priority);
         ++stats_.deferred;
+        if (c.held == nullptr) ++bodies_missing_;
         if (c.held != nullptr) {
           stats_.max_position_error =
               std::max(stats_.max_position_error, position_error(*c.truth, *c.held));
@@ -325,15 +347,28 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
     message_.add_left_gaps(i == 0 ? left[i] : left[i] - left[i - 1]);
   }
   if (reset) message_.set_full(true);
+  if (bodies_missing_ > 0) message_.set_bodies_missing(bodies_missing_);
   stats_.records = candidates.size();
   stats_.left = left.size();
 
   // The mirror takes the records exactly as the client will.
   const std::string error = mirror_.apply(message_, predictor_, settings_.quantum);
   (void)error;  // our own records are well formed; the tests check apply() on bad ones
-  message_.set_view_hash(mirror_.hash());
   delta_has_news_ = !candidates.empty() || !left.empty() || reset;
+  if (hash_due(reset)) message_.set_view_hash(mirror_.hash());
   delta_ = std::make_shared<const std::string>(message_.SerializeAsString());
+}
+
+// Every member of the view is sent every update with news (a member that cannot be
+// is moved to a view of its own), so counting them here counts them per client.
+// A snapshot without news may reach some members only (a heartbeat): it always
+// carries the hash, and does not count.
+bool View::hash_due(bool full) {
+  if (!delta_has_news_) return true;
+  ++news_since_hash_;
+  if (!full && news_since_hash_ < settings_.view_hash_interval) return false;
+  news_since_hash_ = 0;
+  return true;
 }
 
 const std::shared_ptr<const std::string>& View::full_state() {
@@ -349,6 +384,7 @@ const std::shared_ptr<const std::string>& View::full_state() {
     add_exact(records, b.id, b.x, b.y, b.vx, b.vy, b.mode != PredictorMode::Ballistic, b.mode);
   }
   if (list.id_gaps_size() == 0) full.clear_exact();
+  if (bodies_missing_ > 0) full.set_bodies_missing(bodies_missing_);
   full.set_view_hash(mirror_.hash());
   full_state_ = std::make_shared<const std::string>(full.SerializeAsString());
   return full_state_;

@@ -53,6 +53,8 @@ class View {
  private:
   void update_full_encoding(const TruthFrame& frame, std::optional<std::uint64_t> own);
   bool in_interest(const TruthBody& body, const TruthBody* own) const;
+  // Whether this update's delta carries the view hash (ViewSettings::view_hash_interval).
+  bool hash_due(bool full);
 
   wire::ViewSettings settings_;
   wire::Predictor predictor_;
@@ -67,6 +69,8 @@ class View {
   ViewUpdateStats stats_;
   std::uint64_t last_tick_ = 0;
   std::uint64_t state_hash_ = 0;
+  std::uint32_t news_since_hash_ = 0;  // updates with news since the last with the hash
+  std::uint32_t bodies_missing_ = 0;   // in the view, not held: the budget held them back
 };
 
 }  // namespace server

@@ -1,6 +1,6 @@
 // What a live Client writes to its socket, read by a stand-in server on loopback with
 // the server's own parser: the Hello its config asks for, Inputs numbered from 1, the
-// Ack of a snapshot taken, and Bye.
+// Ack of a snapshot taken, and Bye; and a client out of sync asking for a full state.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -20,6 +20,8 @@
 #include "wire.pb.h"
 #include "wire/framing.h"
 #include "wire/messages.h"
+#include "wire/predictor.h"
+#include "wire/reconstruction.h"
 
 namespace {
 
@@ -144,6 +146,88 @@ TEST(ClientWire, TheClientSendsItsHelloInputsAckAndByeAsSharedWireBuildsThem) {
   EXPECT_EQ(received[3].input().ay(), -2.0);
   ASSERT_TRUE(received[4].has_bye());
   EXPECT_EQ(received[4].bye().reason(), "done");
+}
+
+// One body, 5, sent as a quantised record against what the client holds; the view
+// hash is what a client that applied every record faithfully holds after it.
+pb::ServerMessage snapshot_of_body(std::uint64_t tick, bool full, std::int64_t dx,
+                                   wire::Reconstruction& truth, std::int64_t dx_sent) {
+  const wire::Predictor predictor(60.0, 0.0, 0.0);
+  pb::ServerMessage message;
+  pb::Snapshot& s = *message.mutable_snapshot();
+  s.set_tick(tick);
+  s.set_full(full);
+  pb::QuantizedBodies& q = *s.mutable_quantized();
+  q.add_id_gaps(5);
+  q.add_dx(dx);
+  q.add_dy(0);
+  q.add_dvx(0);
+  q.add_dvy(0);
+  EXPECT_EQ(truth.apply(s, predictor, {}), "");
+  s.set_view_hash(truth.hash());
+  q.set_dx(0, dx_sent);  // what goes on the wire: corrupted when dx_sent != dx
+  return message;
+}
+
+// A snapshot whose record was corrupted on the way: the client's hash differs from
+// the server's, so it marks itself out of sync, asks for a full state (once), and
+// is in sync again after the full state; a later snapshot without a hash keeps that.
+TEST(ClientWire, AClientOutOfSyncAsksForAFullStateAndIsInSyncAfterIt) {
+  StandIn server;
+  client::ClientConfig config;
+  config.port = server.port();
+  bool asked = false;
+  std::jthread stand_in([&] {
+    if (!server.accept() || !server.next()) return;
+    pb::ServerMessage hello_answer = welcome();
+    hello_answer.mutable_welcome()->mutable_view()->set_encoding(pb::ENCODING_PREDICTED);
+    hello_answer.mutable_welcome()->mutable_view()->set_position_precision(0.001);
+    hello_answer.mutable_welcome()->mutable_view()->set_velocity_precision(0.001);
+    server.send(hello_answer);
+    wire::Reconstruction truth;
+    server.send(snapshot_of_body(11, true, 1000, truth, 1000));
+    server.send(snapshot_of_body(12, false, 3, truth, 4));
+    std::optional<pb::ClientMessage> message;
+    while ((message = server.next())) {
+      if (message->has_full_state_request()) {
+        asked = true;
+        break;
+      }
+    }
+    if (!asked) return;
+    server.send(snapshot_of_body(13, true, 2000, truth, 2000));
+    pb::ServerMessage header = snapshot(14);
+    server.send(header);
+    while ((message = server.next())) {
+      if (message->has_full_state_request()) asked = false;  // a second request: wrong
+    }
+  });
+
+  client::Client client(config);
+  ASSERT_TRUE(client.connect(5s)) << client.last_error().to_string();
+  const auto first = client.next_snapshot(5s);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_TRUE(first->in_sync);
+  const auto corrupted = client.next_snapshot(5s);
+  ASSERT_TRUE(corrupted.has_value());
+  EXPECT_EQ(corrupted->tick, 12u);
+  EXPECT_FALSE(corrupted->in_sync);
+  EXPECT_EQ(client.stats().desyncs, 1u);
+  const auto full = client.next_snapshot(5s);
+  ASSERT_TRUE(full.has_value());
+  EXPECT_EQ(full->tick, 13u);
+  EXPECT_TRUE(full->in_sync);
+  ASSERT_EQ(full->bodies.size(), 1u);
+  EXPECT_DOUBLE_EQ(full->bodies[0].position.x, 2.0);
+  const auto header = client.next_snapshot(5s);
+  ASSERT_TRUE(header.has_value());
+  EXPECT_EQ(header->tick, 14u);
+  EXPECT_TRUE(header->in_sync);
+  EXPECT_EQ(client.stats().desyncs, 1u);
+  EXPECT_EQ(client.stats().full_states_received, 2u);
+  client.disconnect("done");
+  stand_in.join();
+  EXPECT_TRUE(asked) << "the client never sent a FullStateRequest";
 }
 
 }  // namespace

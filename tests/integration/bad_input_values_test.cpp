@@ -197,6 +197,8 @@ TEST_F(BadInput, ViewSettingsOutOfRangeAreRefusedNamingTheField) {
       {"interest_rect", [](pb::ViewRequest& v) { v.mutable_interest_rect()->set_max_x(-1.0); }},
       {"byte_budget", [](pb::ViewRequest& v) { v.set_byte_budget(3); }},
       {"encoding", [](pb::ViewRequest& v) { v.set_encoding(static_cast<pb::Encoding>(9)); }},
+      {"view_hash_interval", [](pb::ViewRequest& v) { v.set_view_hash_interval(0); }},
+      {"view_hash_interval", [](pb::ViewRequest& v) { v.set_view_hash_interval(1001); }},
   };
   for (const Case& c : cases) {
     RawPeer peer(server_->port());

@@ -2,11 +2,57 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "snapshot_encoder.h"
 #include "wire/framing.h"
 
 namespace server_test {
+namespace {
+
+// A quantised value rounds (true - held) / quantum to the nearest integer, so the
+// client ends within half a quantum of the world, give or take the rounding of the
+// doubles on the way (a few ulps of the values themselves).
+void expect_within_half_a_quantum(double held, double truth, double quantum, const char* what,
+                                  std::uint64_t id) {
+  const double ulps = 8.0 * std::numeric_limits<double>::epsilon() *
+                      std::max({1.0, std::fabs(held), std::fabs(truth)});
+  ASSERT_LE(std::fabs(held - truth), 0.5 * quantum + ulps)
+      << what << " of body " << id << ": held " << held << ", world " << truth;
+}
+
+// Every body of a quantised or velocity record, as the client holds it after the
+// snapshot, against the world on the axes the record carried.
+void check_rounding(const physics::wire::Snapshot& snapshot, const wire::Reconstruction& held,
+                    const server::TruthFrame& frame, wire::Quantum q) {
+  std::vector<std::uint64_t> exact_ids;
+  ASSERT_TRUE(wire::decode_id_gaps(snapshot.exact().id_gaps(), exact_ids));
+  const auto sent_exact = [&](std::uint64_t id) {
+    return std::find(exact_ids.begin(), exact_ids.end(), id) != exact_ids.end();
+  };
+  const auto check = [&](const google::protobuf::RepeatedField<std::uint64_t>& gaps,
+                         bool positions) {
+    std::vector<std::uint64_t> ids;
+    ASSERT_TRUE(wire::decode_id_gaps(gaps, ids));
+    for (const std::uint64_t id : ids) {
+      if (sent_exact(id)) continue;
+      const wire::PredictedBody* b = held.find(id);
+      const server::TruthBody* t = frame.find(id);
+      ASSERT_NE(b, nullptr);
+      ASSERT_NE(t, nullptr);
+      if (positions) {
+        expect_within_half_a_quantum(b->x, t->x, q.position, "x", id);
+        expect_within_half_a_quantum(b->y, t->y, q.position, "y", id);
+      }
+      expect_within_half_a_quantum(b->vx, t->vx, q.velocity, "vx", id);
+      expect_within_half_a_quantum(b->vy, t->vy, q.velocity, "vy", id);
+    }
+  };
+  check(snapshot.quantized().id_gaps(), true);
+  check(snapshot.velocities().id_gaps(), false);
+}
+
+}  // namespace
 
 FeedRun::FeedRun(scene::SceneDef scene, bool lockstep, std::uint64_t heartbeat)
     : sim_(std::move(scene)),
@@ -60,18 +106,28 @@ void FeedRun::tick() {
     ASSERT_TRUE(message.has_snapshot());
     const physics::wire::Snapshot& snapshot = message.snapshot();
     ASSERT_EQ(snapshot.tick(), result.tick);
-    if (c.settings.encoding != physics::wire::ENCODING_FULL) {
-      ASSERT_EQ(c.held.apply(snapshot, predictor_, c.settings.quantum), "");
+    ASSERT_EQ(c.held.apply(snapshot, predictor_, c.settings.quantum), "");
+    check_rounding(snapshot, c.held, frame_, c.settings.quantum);
+    if (::testing::Test::HasFatalFailure()) return;
+    // The hash on every snapshot without news and every k-th with it, so never more
+    // than k snapshots apart.
+    if (snapshot.has_view_hash()) {
       ASSERT_EQ(c.held.hash(), snapshot.view_hash())
           << "client " << c.id << " tick " << result.tick;
-      std::vector<std::uint64_t> ids;
-      ASSERT_TRUE(wire::decode_id_gaps(snapshot.quantized().id_gaps(), ids));
-      for (const auto id : ids) ++c.records_of[id];
-      ASSERT_TRUE(wire::decode_id_gaps(snapshot.exact().id_gaps(), ids));
-      for (const auto id : ids) ++c.records_of[id];
-      ASSERT_TRUE(wire::decode_id_gaps(snapshot.velocities().id_gaps(), ids));
-      for (const auto id : ids) ++c.records_of[id];
+      c.since_hash = 0;
+    } else {
+      ++c.since_hash;
+      ASSERT_LT(c.since_hash, c.settings.view_hash_interval)
+          << "client " << c.id << " tick " << result.tick;
     }
+    std::vector<std::uint64_t> ids;
+    ASSERT_TRUE(wire::decode_id_gaps(snapshot.quantized().id_gaps(), ids));
+    for (const auto id : ids) ++c.records_of[id];
+    ASSERT_TRUE(wire::decode_id_gaps(snapshot.exact().id_gaps(), ids));
+    for (const auto id : ids) ++c.records_of[id];
+    ASSERT_TRUE(wire::decode_id_gaps(snapshot.velocities().id_gaps(), ids));
+    for (const auto id : ids) ++c.records_of[id];
+    for (const auto& body : snapshot.bodies()) ++c.records_of[body.body_id()];
     ++c.snapshots;
     c.records += out.records;
     c.bytes += bytes.size();

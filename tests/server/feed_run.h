@@ -31,6 +31,7 @@ struct FakeClient {
   std::vector<physics::wire::Snapshot> log;           // when keep_log
   bool keep_log = false;
   std::uint64_t last_tick = 0;
+  std::uint32_t since_hash = 0;  // snapshots since the last that carried a view hash
 };
 
 class FeedRun {

@@ -173,5 +173,83 @@ TEST(Feeds, EverySnapshotIntervalSendsOnlyOnItsTicks) {
   EXPECT_TRUE(run.holds_mirror(c));
 }
 
+// An Ack of tick T frees T itself, not only the ticks before it.
+TEST(Feeds, AnAckOfATickFreesThatTick) {
+  FeedRun run(scene_file("moving-1000"), /*lockstep=*/true);
+  FakeClient& c = run.join({});
+  c.acks = false;
+  run.ticks(3);
+  ASSERT_EQ(run.feeds().unacknowledged(1), 3u);
+  const std::uint64_t first = c.last_tick - 2;
+  EXPECT_EQ(run.feeds().ack(1, first), server::AckResult::Accepted);
+  EXPECT_EQ(run.feeds().unacknowledged(1), 2u);
+  EXPECT_EQ(run.feeds().ack(1, c.last_tick), server::AckResult::Accepted);
+  EXPECT_EQ(run.feeds().unacknowledged(1), 0u);
+}
+
+// Two clients whose settings differ in one field alone never share a view, and each
+// stays within its own tolerances (checked on the ticks it is sent a snapshot). A
+// field that ViewSettings::operator== forgot would put the second client in the
+// first one's view: with a finer tolerance, it would get the first one's coarser one.
+struct OneField {
+  const char* name;
+  void (*change)(wire::ViewSettings&);
+};
+
+class ViewSettingsField : public ::testing::TestWithParam<OneField> {};
+
+TEST_P(ViewSettingsField, ClientsDifferingInItAloneNeverShareAView) {
+  const wire::ViewSettings first;
+  wire::ViewSettings second;
+  GetParam().change(second);
+  EXPECT_FALSE(first == second);
+  FeedRun run(scene_file("moving-1000"));
+  run.join(first);
+  run.join(second);
+  for (int i = 0; i < 90; ++i) {
+    run.tick();
+    ASSERT_FALSE(::testing::Test::HasFatalFailure());
+    EXPECT_EQ(run.feeds().view_members(1), 1u) << "tick " << run.frame().tick;
+    EXPECT_EQ(run.feeds().view_members(2), 1u) << "tick " << run.frame().tick;
+    for (server::FeedClient id = 1; id <= 2; ++id) {
+      const FakeClient& c = run.client(id);
+      if (c.last_tick != run.frame().tick) continue;
+      const auto [position, velocity] = run.worst_error(c);
+      ASSERT_LE(position, c.settings.position_tolerance) << "client " << id;
+      ASSERT_LE(velocity, c.settings.velocity_tolerance) << "client " << id;
+    }
+  }
+  EXPECT_EQ(run.feeds().view_count(), 2u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Feeds, ViewSettingsField,
+    ::testing::Values(
+        OneField{"encoding",
+                 [](wire::ViewSettings& s) { s.encoding = physics::wire::ENCODING_EXACT; }},
+        OneField{"position_precision", [](wire::ViewSettings& s) { s.quantum.position = 0.0005; }},
+        OneField{"velocity_precision", [](wire::ViewSettings& s) { s.quantum.velocity = 0.0005; }},
+        OneField{"position_tolerance", [](wire::ViewSettings& s) { s.position_tolerance = 0.001; }},
+        OneField{"velocity_tolerance", [](wire::ViewSettings& s) { s.velocity_tolerance = 0.01; }},
+        OneField{"snapshot_interval", [](wire::ViewSettings& s) { s.snapshot_interval = 2; }},
+        OneField{"window", [](wire::ViewSettings& s) { s.window = 6; }},
+        OneField{"interest_radius",
+                 [](wire::ViewSettings& s) {
+                   s.interest = wire::InterestKind::Radius;
+                   s.interest_radius = 1e6;
+                 }},
+        OneField{"interest_rect",
+                 [](wire::ViewSettings& s) {
+                   s.interest = wire::InterestKind::Rect;
+                   s.interest_rect.set_min_x(-1e6);
+                   s.interest_rect.set_min_y(-1e6);
+                   s.interest_rect.set_max_x(1e6);
+                   s.interest_rect.set_max_y(1e6);
+                 }},
+        OneField{"byte_budget", [](wire::ViewSettings& s) { s.byte_budget = 1u << 20; }},
+        OneField{"state_hash", [](wire::ViewSettings& s) { s.state_hash = true; }},
+        OneField{"view_hash_interval", [](wire::ViewSettings& s) { s.view_hash_interval = 1; }}),
+    [](const ::testing::TestParamInfo<OneField>& field) { return std::string(field.param.name); });
+
 }  // namespace
 }  // namespace server_test

@@ -75,8 +75,81 @@ TEST(Predictor, TheWorkedExampleOfTheProtocolPage) {
   EXPECT_NE(page.find(hash), std::string::npos) << hash;
   s.set_view_hash(after.hash());
   const std::vector<std::string> examples = protocol_page::wire_examples(page);
-  ASSERT_EQ(examples.size(), 3u);
+  ASSERT_EQ(examples.size(), 4u);
   EXPECT_EQ(protocol_page::hex(wire::encode_frame(message)), examples[2]);
+}
+
+// The second worked example of section 5.7: mode entries, each list counting its
+// own records from 0. Quantized records 0, 1, 2 (bodies 3, 7, 9): body 7 becomes
+// Glide (entry (1 << 2) | 1), body 9 Hold (entry (1 << 2) | 2: gap 2 - 1); the
+// velocity record 0 (body 12) becomes Hold (entry (0 << 2) | 2).
+TEST(Predictor, TheModesExampleOfTheProtocolPage) {
+  const std::string page = protocol_page::text();
+  const wire::Predictor predictor(60.0, 0.0, -9.81);
+  physics::wire::ServerMessage message;
+  physics::wire::Snapshot& s = *message.mutable_snapshot();
+  s.set_tick(20);
+  s.set_full(true);
+  auto* q = s.mutable_quantized();
+  for (const std::uint64_t gap : {3, 4, 2}) q->add_id_gaps(gap);
+  for (const std::int64_t v : {1000, -1500, 3000}) q->add_dx(v);
+  for (const std::int64_t v : {2000, 500, 100}) q->add_dy(v);
+  for (const std::int64_t v : {0, 250, 0}) q->add_dvx(v);
+  for (const std::int64_t v : {0, 0, 0}) q->add_dvy(v);
+  q->add_modes((1u << 2) | 1u);
+  q->add_modes((1u << 2) | 2u);
+  auto* v = s.mutable_velocities();
+  v->add_id_gaps(12);
+  v->add_dvx(-40);
+  v->add_dvy(10);
+  v->add_modes((0u << 2) | 2u);
+  wire::Reconstruction held;
+  ASSERT_EQ(held.apply(s, predictor, {}), "");
+  ASSERT_EQ(held.bodies().size(), 4u);
+  const wire::PredictorMode expected[] = {wire::PredictorMode::Ballistic,
+                                          wire::PredictorMode::Glide, wire::PredictorMode::Hold,
+                                          wire::PredictorMode::Hold};
+  const std::uint64_t ids[] = {3, 7, 9, 12};
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(held.bodies()[i].id, ids[i]);
+    EXPECT_EQ(held.bodies()[i].mode, expected[i]) << "body " << ids[i];
+  }
+  EXPECT_EQ(held.find(12)->x, 0.0);  // a velocity record for a body not held: from zero
+  EXPECT_EQ(held.find(12)->vx, -40.0 * 0.001);
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "0x%016llx", static_cast<unsigned long long>(held.hash()));
+  EXPECT_NE(page.find(hash), std::string::npos) << hash;
+  s.set_view_hash(held.hash());
+  const std::vector<std::string> examples = protocol_page::wire_examples(page);
+  ASSERT_EQ(examples.size(), 4u);
+  EXPECT_EQ(protocol_page::hex(wire::encode_frame(message)), examples[3]);
+}
+
+// ENCODING_FULL's bodies are held as sent, in mode Hold, and hashed as the records
+// of the other encodings; they must ascend.
+TEST(Reconstruction, TheFullEncodingsBodiesAreHeldInModeHold) {
+  const wire::Predictor predictor(60.0, 0.0, -9.81);
+  physics::wire::Snapshot s;
+  s.set_tick(5);
+  s.set_full(true);
+  for (const std::uint64_t id : {2, 9}) {
+    physics::wire::BodyState* b = s.add_bodies();
+    b->set_body_id(id);
+    b->set_x(1.0);
+    b->set_vy(-2.0);
+  }
+  wire::Reconstruction held;
+  ASSERT_EQ(held.apply(s, predictor, {}), "");
+  ASSERT_EQ(held.bodies().size(), 2u);
+  for (const wire::PredictedBody& b : held.bodies()) {
+    EXPECT_EQ(b.mode, wire::PredictorMode::Hold);
+    EXPECT_EQ(b.x, 1.0);
+    EXPECT_EQ(b.vy, -2.0);
+  }
+  s.mutable_bodies(1)->set_body_id(2);
+  wire::Reconstruction other;
+  EXPECT_NE(other.apply(s, predictor, {}), "");
+  EXPECT_TRUE(other.bodies().empty());
 }
 
 TEST(Predictor, ModesMoveTheBodyAsTheTableSays) {

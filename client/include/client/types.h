@@ -154,8 +154,9 @@ struct Snapshot {
   std::optional<std::int64_t> input_margin_us;
   std::size_t records = 0;  // bodies this snapshot carried (the rest were predicted)
   bool full = false;        // a full state: the bodies held were rebuilt from it
-  // Predicted and exact encodings: the server's hash of what this client holds, and
-  // whether ours equals it (false: the client has asked for a full state).
+  // The server's hash of what this client holds (0 on the snapshots that carry none,
+  // ViewRequest.view_hash_interval), and whether ours equalled it at the last
+  // snapshot that carried one (false: the client has asked for a full state).
   std::uint64_t view_hash = 0;
   bool in_sync = true;
   // Local bookkeeping, not on the wire: when the frame was decoded, and its size

@@ -106,6 +106,35 @@ std::string read_exact(const physics::wire::ExactBodies& list, std::vector<Recor
   return read_modes(list, first, records);
 }
 
+// ENCODING_FULL's bodies: exact values the client holds as they are (mode Hold), so
+// that the full encoding has a view hash as the others do.
+std::string read_full_bodies(
+    const google::protobuf::RepeatedPtrField<physics::wire::BodyState>& list,
+    std::vector<Record>& records) {
+  bool first = true;
+  std::uint64_t last = 0;
+  for (const physics::wire::BodyState& state : list) {
+    if (!first && state.body_id() <= last) return "full-encoding body ids do not ascend";
+    first = false;
+    last = state.body_id();
+    Record r;
+    r.id = state.body_id();
+    r.kind = RecordKind::Exact;
+    r.x = state.x();
+    r.y = state.y();
+    r.vx = state.vx();
+    r.vy = state.vy();
+    r.has_mode = true;
+    r.mode = PredictorMode::Hold;
+    if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.vx) ||
+        !std::isfinite(r.vy)) {
+      return "a full-encoding body state that is not finite";
+    }
+    records.push_back(r);
+  }
+  return "";
+}
+
 // The record applied to what the client held (or to the zero state for a body it
 // did not hold): quantized  x = x_predicted + n * quantum;  velocity  the same for
 // vx and vy alone;  exact  x = the value.
@@ -182,10 +211,13 @@ std::string Reconstruction::apply(const physics::wire::Snapshot& snapshot,
   if (snapshot.has_exact()) {
     if (std::string error = read_exact(snapshot.exact(), records); !error.empty()) return error;
   }
+  if (std::string error = read_full_bodies(snapshot.bodies(), records); !error.empty()) {
+    return error;
+  }
   std::vector<std::uint64_t> gone;
   if (!decode_id_gaps(snapshot.left_gaps(), gone)) return "left body ids do not ascend";
-  // Quantized, velocity, then exact records, each list ascending: one list sorted by
-  // id (stable, so a body in several lists gets its records in that order).
+  // Quantized, velocity, exact records, then full-encoding bodies, each list ascending: one list
+  // sorted by id (stable, so a body in several lists gets its records in that order).
   std::stable_sort(records.begin(), records.end(),
                    [](const Record& a, const Record& b) { return a.id < b.id; });
 

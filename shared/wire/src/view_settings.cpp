@@ -26,7 +26,7 @@ bool ViewSettings::operator==(const ViewSettings& o) const {
          interest_rect.min_y() == o.interest_rect.min_y() &&
          interest_rect.max_x() == o.interest_rect.max_x() &&
          interest_rect.max_y() == o.interest_rect.max_y() && byte_budget == o.byte_budget &&
-         state_hash == o.state_hash;
+         state_hash == o.state_hash && view_hash_interval == o.view_hash_interval;
 }
 
 std::string resolve_view(const physics::wire::ViewRequest& request, std::uint32_t max_window,
@@ -102,6 +102,13 @@ std::string resolve_view(const physics::wire::ViewRequest& request, std::uint32_
     }
   }
   s.state_hash = request.state_hash();
+  if (request.has_view_hash_interval()) {
+    s.view_hash_interval = request.view_hash_interval();
+    if (s.view_hash_interval < 1 || s.view_hash_interval > kMaxViewHashInterval) {
+      return "view.view_hash_interval must be in [1, " + std::to_string(kMaxViewHashInterval) +
+             "] snapshots, got " + std::to_string(s.view_hash_interval);
+    }
+  }
   out = s;
   return "";
 }
@@ -119,6 +126,7 @@ physics::wire::ViewRequest to_wire(const ViewSettings& s) {
   if (s.interest == InterestKind::Rect) *w.mutable_interest_rect() = s.interest_rect;
   w.set_byte_budget(s.byte_budget);
   w.set_state_hash(s.state_hash);
+  w.set_view_hash_interval(s.view_hash_interval);
   return w;
 }
 

@@ -25,7 +25,8 @@ inline constexpr std::uint64_t kMaxTickGap = 1u << 22;
 class Reconstruction {
  public:
   // Applies one snapshot: `full` clears first; every body is advanced to the
-  // snapshot's tick; the bodies in left_gaps go; records replace or add bodies.
+  // snapshot's tick; the bodies in left_gaps go; records (and the full encoding's
+  // bodies, held in mode Hold) replace or add bodies.
   // Returns "" on success, or what was wrong with the snapshot (nothing is
   // trusted: sizes, order, ranges and gaps are checked before anything changes).
   std::string apply(const physics::wire::Snapshot& snapshot, const Predictor& predictor,

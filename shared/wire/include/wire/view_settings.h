@@ -28,6 +28,9 @@ struct ViewSettings {
   physics::wire::Rect interest_rect;
   std::uint32_t byte_budget = 0;  // 0: no budget
   bool state_hash = false;
+  // The view hash in every k-th snapshot with body news (and in all others): a
+  // client finds a desync at most k snapshots after the one that caused it.
+  std::uint32_t view_hash_interval = 4;
 
   bool operator==(const ViewSettings& other) const;
 };
@@ -42,6 +45,7 @@ inline constexpr double kMaxInterestRadius = 1e6;
 inline constexpr double kMaxInterestCoordinate = 1e9;
 inline constexpr std::uint32_t kMinByteBudget = 64;
 inline constexpr std::uint32_t kMaxByteBudget = 1u << 20;
+inline constexpr std::uint32_t kMaxViewHashInterval = 1000;
 
 // Fills `out` from `request` (absent fields: the defaults; the window is capped at
 // `max_window`). Returns "" or a sentence naming the field at fault and its range.
