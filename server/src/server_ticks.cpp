@@ -197,6 +197,7 @@ void Server::Impl::broadcast(const TruthFrame& frame) {
     // Held by a copy: a session that turns out too slow closes, and leaves the map.
     const std::shared_ptr<Session> session = it->second;
     if (session->closing()) continue;
+    if (out.full) session->spend_full_state(out.shared->size() + out.tail.size());
     session->send_snapshot(std::move(out.shared), std::move(out.tail));
     peak = std::max(peak, session->queued_snapshots());
   }
