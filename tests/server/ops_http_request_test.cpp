@@ -50,10 +50,10 @@ TEST(OpsHttpRequest, ARequestEndingExactlyAtTheCapIsServed) {
 }
 
 TEST(OpsHttpRequest, WhatIsNotARequestIsMalformed) {
-  for (const std::string text :
+  for (const std::string& text :
        {std::string("GET\r\n\r\n"), std::string("GET /x\r\n\r\n"),
         std::string("GET x HTTP/1.1\r\n\r\n"), std::string("GET /x HTTP/2\r\n\r\n"),
-        std::string(" /x HTTP/1.1\r\n\r\n"), std::string("GET /x HTTP/1.1\r\nA: \0\r\n\r\n", 26)}) {
+        std::string(" /x HTTP/1.1\r\n\r\n"), std::string("GET /x HTTP/1.1\r\nA: \0\r\n\r\n", 25)}) {
     OpsHttpRequest request(8192);
     EXPECT_EQ(request.feed(text), State::Malformed) << text;
   }
