@@ -41,6 +41,17 @@ void probe_health(RunningServer& server, Probe& probe) {
   probe.worst_ms = std::max(probe.worst_ms, ms);
 }
 
+// The end of every attack: the player is still served and every probe was answered;
+// prints the probes' figures and returns the endpoint's counters.
+server::OpsHttpStats after_attack(const char* what, const RunningServer& server,
+                                  const PlayerBeside& player, const Probe& probe) {
+  EXPECT_TRUE(player.gets_snapshots()) << what;
+  EXPECT_EQ(probe.answered, probe.sent) << what;
+  std::printf("%s: %d of %d /healthz probes answered, the slowest in %.1f ms\n", what,
+              probe.answered, probe.sent, probe.worst_ms);
+  return server.stats().ops_http;
+}
+
 server::ServerConfig metrics_config() {
   server::ServerConfig config = test_config();
   config.metrics_port = 0;
@@ -77,12 +88,9 @@ TEST(MetricsAttack, SlowHeadersAreCutAtTheirDeadlineAndProbesAreAnswered) {
     probe_health(server, probe);
     std::this_thread::sleep_for(100ms);
   }
-  EXPECT_TRUE(player.gets_snapshots());
-  const server::OpsHttpStats http = server.stats().ops_http;
-  std::printf("slow headers: %d of %d probes answered, worst %.1f ms; %llu cut at the deadline\n",
-              probe.answered, probe.sent, probe.worst_ms,
+  const server::OpsHttpStats http = after_attack("slow headers", server, player, probe);
+  std::printf("slow headers: %llu cut at the deadline\n",
               static_cast<unsigned long long>(http.deadline_expired));
-  EXPECT_EQ(probe.answered, probe.sent);
   EXPECT_GE(http.deadline_expired, 4u);
   EXPECT_LE(http.peak_open_connections, 5u);  // the 4 slow ones and a probe
 }
@@ -108,15 +116,10 @@ TEST(MetricsAttack, IdleConnectionsNeverFillTheEndpoint) {
     if (i % 100 == 99) probe_health(server, probe);
   }
   probe_health(server, probe);
-  EXPECT_TRUE(player.gets_snapshots());
-  const server::OpsHttpStats http = server.stats().ops_http;
-  std::printf(
-      "idle connections: %d of %d probes answered, worst %.1f ms; peak open %zu, "
-      "%llu evicted, %llu refused 429\n",
-      probe.answered, probe.sent, probe.worst_ms, http.peak_open_connections,
-      static_cast<unsigned long long>(http.evicted),
-      static_cast<unsigned long long>(http.rate_limited));
-  EXPECT_EQ(probe.answered, probe.sent);
+  const server::OpsHttpStats http = after_attack("idle connections", server, player, probe);
+  std::printf("idle connections: peak open %zu, %llu evicted, %llu refused 429\n",
+              http.peak_open_connections, static_cast<unsigned long long>(http.evicted),
+              static_cast<unsigned long long>(http.rate_limited));
   EXPECT_LE(http.peak_open_connections, static_cast<std::size_t>(limits.max_connections));
   EXPECT_GT(http.evicted, 0u);
   EXPECT_GT(http.rate_limited, 0u);
@@ -142,14 +145,9 @@ TEST(MetricsAttack, AHugeHeaderIsRefusedAtTheCapAndNeverHeld) {
     probe_health(server, probe);
   }
   const long after_kib = resident_kib();
-  EXPECT_TRUE(player.gets_snapshots());
-  const server::OpsHttpStats http = server.stats().ops_http;
-  std::printf(
-      "huge headers: %zu bytes taken by the kernel; %d of %d probes answered, worst "
-      "%.1f ms; peak held %zu bytes; RSS %+ld KiB\n",
-      sent, probe.answered, probe.sent, probe.worst_ms, http.peak_held_header_bytes,
-      after_kib - before_kib);
-  EXPECT_EQ(probe.answered, probe.sent);
+  const server::OpsHttpStats http = after_attack("huge headers", server, player, probe);
+  std::printf("huge headers: %zu bytes taken by the kernel; peak held %zu bytes; RSS %+ld KiB\n",
+              sent, http.peak_held_header_bytes, after_kib - before_kib);
   EXPECT_EQ(http.header_too_large, 8u);
   // One connection at a time here: at most one cap's worth, plus a probe's request.
   EXPECT_LE(http.peak_held_header_bytes, limits.max_header_bytes + 1024);
@@ -168,12 +166,9 @@ TEST(MetricsAttack, AFloodOfRequestsFromOneAddressIsRateLimited) {
     if (i % 50 == 0) probe_health(server, probe);
   }
   probe_health(server, probe);
-  EXPECT_TRUE(player.gets_snapshots());
-  const server::OpsHttpStats http = server.stats().ops_http;
-  std::printf("request flood: %d of %d probes answered, worst %.1f ms; %llu refused 429\n",
-              probe.answered, probe.sent, probe.worst_ms,
+  const server::OpsHttpStats http = after_attack("request flood", server, player, probe);
+  std::printf("request flood: %llu refused 429\n",
               static_cast<unsigned long long>(http.rate_limited));
-  EXPECT_EQ(probe.answered, probe.sent);
   // The burst (40) and what the rate refills while the loop runs are served.
   EXPECT_GE(http.rate_limited, 100u);
 }
