@@ -10,6 +10,8 @@ PlayerBeside::PlayerBeside(const RunningServer& server, const std::string& name)
     return;
   }
   connected_ = true;
+  // A lockstep server steps its next tick only once inputs for it arrive.
+  client_.send_input(client_.welcome().current_tick + 1, 0.0, 0.0);
   thread_ = std::thread([this] {
     while (!stop_.load()) {
       const auto snapshot = client_.next_snapshot(100ms);
