@@ -1,15 +1,20 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses of tests/fuzz with clang 14 into build-fuzz/ and runs
-# each for FUZZ_SECONDS (default 15 s) from its committed seeds in
+# each for FUZZ_SECONDS (default 15 s, CI's short run) from its committed seeds in
 # tests/fuzz/corpus/NAME/; any crash, leak, sanitizer report or timeout fails the run,
 # and the input that did it is left in build-fuzz/artifacts/.
-#   scripts/test-fuzz.sh            build and fuzz
+#   scripts/test-fuzz.sh            build and fuzz, 15 s each
+#   scripts/test-fuzz.sh --long     the nightly (or local) run: 600 s each, unless
+#                                   FUZZ_SECONDS says otherwise
 #   scripts/test-fuzz.sh --seeds    rewrite tests/fuzz/corpus/ from real messages
+# FUZZ_HARNESSES="replay scene" runs only those (default: all five).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir="${FUZZ_BUILD_DIR:-build-fuzz}"
-seconds="${FUZZ_SECONDS:-15}"
-harnesses=(server_messages client snapshot scene replay)
+default_seconds=15
+if [ "${1:-}" = "--long" ]; then default_seconds=600; fi
+seconds="${FUZZ_SECONDS:-$default_seconds}"
+read -r -a harnesses <<<"${FUZZ_HARNESSES:-server_messages client snapshot scene replay}"
 werror=OFF
 if [ "${CI:-}" = "true" ]; then werror=ON; fi
 

@@ -238,6 +238,7 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
         config.port = 0;
         config.tick_rate = tick_rate;
         config.max_clients = std::max(64, bots + 1);
+        config.max_players_per_address = 0;  // every bot connects from 127.0.0.1
         server::Server server(config, run.scene);
         std::thread server_thread([&] { server.run(); });
         if (warmup > 0.0) {

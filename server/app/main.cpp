@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   std::string token_file;
   long hello_backoff_ms = 1000;
   long hello_backoff_max_ms = 60000;
+  long seat_backoff_ms = 2000;
   std::string log_level = "info";
   std::string log_format = "text";
   std::string lockstep_pace = "asap";
@@ -46,18 +47,17 @@ int main(int argc, char** argv) {
   int metrics_port = -1;
   long stats_interval_s = 60;
 
+  const auto ip_address_check = [](const std::string& text) {
+    std::error_code ec;
+    (void)asio::ip::make_address(text, ec);
+    return ec ? "not an IP address: " + text : std::string();
+  };
   app.add_option("--scene", scene_file,
                  "Scene file (.textproto, see docs/SCENES.md); default: the built-in scene")
       ->check(CLI::ExistingFile);
   app.add_option("--bind", config.bind, "Address to listen on (IPv4 or IPv6)")
       ->capture_default_str()
-      ->check(
-          [](const std::string& text) {
-            std::error_code ec;
-            (void)asio::ip::make_address(text, ec);
-            return ec ? "not an IP address: " + text : std::string();
-          },
-          "IP address");
+      ->check(ip_address_check, "IP address");
   app.add_option("--port", port,
                  "TCP port; 0 picks a free one (printed as 'listening on ADDRESS:PORT')")
       ->capture_default_str()
@@ -91,9 +91,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1000000));
   app.add_option("--metrics-port", metrics_port,
                  "Serve GET /healthz, /readyz and /metrics (Prometheus) over HTTP on this "
-                 "port, on the --bind address; 0 picks a free one (printed as 'metrics on "
-                 "ADDRESS:PORT'); default: off")
+                 "port, on the --metrics-bind address; 0 picks a free one (printed as "
+                 "'metrics on ADDRESS:PORT'); default: off")
       ->check(CLI::Range(0, 65535));
+  app.add_option("--metrics-bind", config.metrics_bind,
+                 "Address of the --metrics-port endpoint: loopback unless told otherwise "
+                 "(a private interface, never the internet); at most 32 connections, 4 per "
+                 "address, 2 s for a request, 8 KiB of headers, 20 requests a second per "
+                 "address")
+      ->capture_default_str()
+      ->check(ip_address_check, "IP address");
   app.add_flag("--shutdown-after-match", config.shutdown_after_match,
                "With --lockstep-players: stop once the match has begun and every player has "
                "left (on Agones, the game server is then shut down)");
@@ -108,6 +115,18 @@ int main(int argc, char** argv) {
                  "built-in scene fits 58 players)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
+  app.add_option("--max-players-per-address", config.max_players_per_address,
+                 "Most players joined at once from one address (spectators apart); the next "
+                 "is refused with ERROR_SERVER_FULL. The default lets a LAN party behind one "
+                 "NAT address in, not one machine squatting every seat; 0: no cap")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100000));
+  app.add_option("--seat-backoff-ms", seat_backoff_ms,
+                 "After a player from an address is dropped for straggling or not reading, "
+                 "that address may not take a seat (ERROR_RATE_LIMITED) for this long, "
+                 "doubled at each further drop up to --hello-backoff-max-ms")
+      ->capture_default_str()
+      ->check(CLI::Range(0L, 86400000L));
   app.add_option("--max-spectators", config.max_spectators,
                  "Most spectators (clients that watch without a body) at once")
       ->capture_default_str()
@@ -149,6 +168,11 @@ int main(int argc, char** argv) {
                  "same); over it, reading pauses (0: unlimited)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1e9));
+  app.add_option("--full-state-bytes-per-second", config.full_state_bytes_per_second,
+                 "Bytes of full states a client may be sent a second (bursts of twice that); "
+                 "a FullStateRequest over it is answered ERROR_RATE_LIMITED (0: unlimited)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e12));
   app.add_option("--max-message-bytes", config.max_message_bytes,
                  "Largest message a client may send; larger ones get ERROR_MESSAGE_TOO_LARGE "
                  "and the connection is closed")
@@ -173,8 +197,10 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   app.add_option("--idle-timeout-ms", idle_timeout_ms,
-                 "Drop a client that sends nothing, or reads nothing, for this long "
-                 "(clients without inputs send Ping)")
+                 "Drop a client that sends nothing for this long (clients without inputs "
+                 "send Ping), and a joined client that acknowledges none of the snapshots "
+                 "sent to it for this long, whatever else it sends: a client must read "
+                 "to keep its place")
       ->capture_default_str()
       ->check(CLI::Range(1L, 86400000L));
   app.add_option("--max-ticks-ahead", config.max_ticks_ahead,
@@ -236,6 +262,7 @@ int main(int argc, char** argv) {
   config.token = token_choice.token;
   config.hello_backoff = std::chrono::milliseconds(hello_backoff_ms);
   config.hello_backoff_max = std::chrono::milliseconds(hello_backoff_max_ms);
+  config.seat_backoff = std::chrono::milliseconds(seat_backoff_ms);
   config.peer_byte_burst = config.peer_bytes_per_second;
   config.peer_message_burst = config.peer_messages_per_second;
   config.handle_signals = true;
@@ -258,7 +285,8 @@ int main(int argc, char** argv) {
     // Tests and scripts read this line to learn the port (--port 0).
     std::cout << "listening on " << config.bind << ":" << server.port() << std::endl;
     if (config.metrics_port) {
-      std::cout << "metrics on " << config.bind << ":" << server.metrics_port() << std::endl;
+      std::cout << "metrics on " << config.metrics_bind << ":" << server.metrics_port()
+                << std::endl;
     }
     spdlog::info("serving{} at {} ticks/s, at most {} clients{}",
                  config.lockstep ? " in lockstep" : "", effective_tick_rate, config.max_clients,

@@ -26,6 +26,9 @@ AddressLimits::Entry& AddressLimits::entry(const std::string& address, clock::ti
       now - std::max(found.last_failure, found.refused_until) >= config_.backoff_max) {
     found.failures = 0;
   }
+  if (found.player_drops > 0 && now - found.seat_refused_until >= config_.backoff_max) {
+    found.player_drops = 0;
+  }
   return found;
 }
 
@@ -35,7 +38,8 @@ void AddressLimits::forget_one() {
   auto victim = entries_.end();
   bool victim_refused = true;
   for (auto it = entries_.begin(); it != entries_.end(); ++it) {
-    const bool refused = it->second.failures >= config_.failures_before_backoff;
+    const bool refused =
+        it->second.failures >= config_.failures_before_backoff || it->second.player_drops > 0;
     if (victim == entries_.end() || (victim_refused && !refused) ||
         (victim_refused == refused && it->second.last_seen < victim->second.last_seen)) {
       victim = it;
@@ -69,11 +73,29 @@ void AddressLimits::on_failed_hello(const std::string& address, clock::time_poin
   ++e.failures;
   const int over = e.failures - config_.failures_before_backoff;
   if (over < 0) return;
-  // base * 2^over, computed without overflowing: stop doubling at the maximum.
-  auto backoff = std::chrono::duration_cast<clock::duration>(config_.backoff_base);
+  e.refused_until = now + doubled(config_.backoff_base, over);
+}
+
+AddressLimits::clock::duration AddressLimits::doubled(std::chrono::milliseconds base,
+                                                      int times) const {
+  // base * 2^times, computed without overflowing: stop doubling at the maximum.
+  auto value = std::chrono::duration_cast<clock::duration>(base);
   const auto most = std::chrono::duration_cast<clock::duration>(config_.backoff_max);
-  for (int i = 0; i < over && backoff < most; ++i) backoff *= 2;
-  e.refused_until = now + std::min(backoff, most);
+  for (int i = 0; i < times && value < most; ++i) value *= 2;
+  return std::min(value, most);
+}
+
+void AddressLimits::on_player_dropped(const std::string& address, clock::time_point now) {
+  Entry& e = entry(address, now);
+  e.seat_refused_until = now + doubled(config_.seat_backoff, e.player_drops);
+  ++e.player_drops;
+}
+
+AddressLimits::clock::duration AddressLimits::seat_wait(const std::string& address,
+                                                        clock::time_point now) {
+  const auto it = entries_.find(address);
+  if (it == entries_.end() || now >= it->second.seat_refused_until) return {};
+  return it->second.seat_refused_until - now;
 }
 
 void AddressLimits::on_joined(const std::string& address) {

@@ -24,6 +24,10 @@ struct AddressLimitsConfig {
   int failures_before_backoff = 8;
   std::chrono::milliseconds backoff_base{1000};
   std::chrono::milliseconds backoff_max{60000};
+  // A player dropped for straggling or not reading: its address may not take a seat
+  // for seat_backoff, doubled at each further drop, up to backoff_max; a quiet
+  // backoff_max after the refusal ended forgives the drops.
+  std::chrono::milliseconds seat_backoff{2000};
   // Addresses remembered at once; past it the longest-quiet one is forgotten.
   std::size_t max_tracked = 4096;
 };
@@ -44,6 +48,10 @@ class AddressLimits {
   Decision on_accept(const std::string& address, clock::time_point now);
   void on_failed_hello(const std::string& address, clock::time_point now);
   void on_joined(const std::string& address);
+  // A player from `address` dropped for straggling or for not reading.
+  void on_player_dropped(const std::string& address, clock::time_point now);
+  // How long until `address` may take a seat again (zero: now).
+  clock::duration seat_wait(const std::string& address, clock::time_point now);
 
   std::size_t tracked() const { return entries_.size(); }
   int failures(const std::string& address) const;
@@ -57,8 +65,12 @@ class AddressLimits {
     clock::time_point refused_until{};
     clock::time_point last_failure{};
     clock::time_point last_seen;
+    int player_drops = 0;
+    clock::time_point seat_refused_until{};
   };
   Entry& entry(const std::string& address, clock::time_point now);
+  // base * 2^times, at most backoff_max.
+  clock::duration doubled(std::chrono::milliseconds base, int times) const;
   void forget_one();
 
   AddressLimitsConfig config_;

@@ -47,6 +47,12 @@ const char* to_string(DropReason reason) {
       return "lockstep straggler (missed too many ticks)";
     case DropReason::InvalidSubscription:
       return "invalid contact subscription";
+    case DropReason::AddressFull:
+      return "too many players from its address";
+    case DropReason::SeatBackoff:
+      return "address backing off after drops";
+    case DropReason::NotReading:
+      return "not reading (no snapshot acknowledged)";
   }
   return "unknown";
 }

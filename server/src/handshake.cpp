@@ -2,6 +2,7 @@
 // lockstep lobby, the spectators.
 #include "handshake.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "wire/messages.h"
@@ -57,10 +58,12 @@ Handshake::Handshake(const ServerConfig& config)
       max_snapshot_window_(config.max_snapshot_window),
       seats_(static_cast<std::uint32_t>(config.lockstep_players > 0 ? config.lockstep_players
                                                                     : config.max_clients)),
-      lobby_open_(config.lockstep_players == 0) {}
+      lobby_open_(config.lockstep_players == 0),
+      max_players_per_address_(
+          static_cast<std::size_t>(std::max(0, config.max_players_per_address))) {}
 
 HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wire::Hello& hello,
-                                Simulation& simulation) {
+                                Simulation& simulation, const std::string& address) {
   HelloDecision decision;
   if (joined) {
     return refuse(std::move(decision), physics::wire::ERROR_UNEXPECTED_MESSAGE,
@@ -94,7 +97,7 @@ HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wir
     decision.contacts = std::move(contacts);
   }
   if (hello.spectate()) return decide_spectator(client, std::move(decision));
-  return decide_player(client, hello, simulation, std::move(decision));
+  return decide_player(client, hello, simulation, address, std::move(decision));
 }
 
 HelloDecision Handshake::decide_spectator(ClientId client, HelloDecision decision) {
@@ -115,13 +118,24 @@ HelloDecision Handshake::decide_spectator(ClientId client, HelloDecision decisio
 }
 
 HelloDecision Handshake::decide_player(ClientId client, const physics::wire::Hello& hello,
-                                       Simulation& simulation, HelloDecision decision) {
+                                       Simulation& simulation, const std::string& address,
+                                       HelloDecision decision) {
   // The room holds exactly the players welcomed and not gone (a straggler leaves it
   // before its connection closes, freeing its place but not yet its seat).
   if (simulation.room().size() + lobby_.size() >= max_clients_) {
     return refuse(std::move(decision), physics::wire::ERROR_SERVER_FULL,
                   "server full: " + std::to_string(max_clients_) + " clients connected",
                   DropReason::ServerFull);
+  }
+  if (max_players_per_address_ > 0 && !address.empty()) {
+    const auto from = players_from_.find(address);
+    if (from != players_from_.end() && from->second >= max_players_per_address_) {
+      return refuse(std::move(decision), physics::wire::ERROR_SERVER_FULL,
+                    "too many players from " + address + ": " +
+                        std::to_string(max_players_per_address_) +
+                        " joined (--max-players-per-address)",
+                    DropReason::AddressFull);
+    }
   }
   const std::optional<std::uint32_t> wanted =
       hello.has_seat() ? std::optional<std::uint32_t>(hello.seat()) : std::nullopt;
@@ -143,6 +157,11 @@ HelloDecision Handshake::decide_player(ClientId client, const physics::wire::Hel
                     DropReason::ServerFull);
   }
   decision.seat = claim.seat;
+  // Counted from its seat on; a refusal below (no spawn) forgets it again.
+  if (!address.empty()) {
+    player_address_[client] = address;
+    ++players_from_[address];
+  }
   if (!lobby_open_) {
     lobby_.emplace(client, decision.view);
     decision.outcome = HelloDecision::Outcome::Lobby;
@@ -154,6 +173,7 @@ HelloDecision Handshake::decide_player(ClientId client, const physics::wire::Hel
   const std::optional<phys::BodyId> body = simulation.join(client, wanted);
   if (!body) {
     seats_.release(client);
+    forget_address(client);
     return refuse(std::move(decision), physics::wire::ERROR_NO_SPAWN,
                   "no free spawn position for another body", DropReason::NoSpawn);
   }
@@ -172,6 +192,7 @@ LobbyOpening Handshake::open_lobby(Simulation& simulation) {
     const std::optional<phys::BodyId> body = simulation.join(id, seat);
     if (!body) {
       seats_.release(id);
+      forget_address(id);
       opening.no_spawn.push_back(id);
       continue;
     }
@@ -181,7 +202,18 @@ LobbyOpening Handshake::open_lobby(Simulation& simulation) {
   return opening;
 }
 
+void Handshake::forget_address(ClientId client) {
+  const auto it = player_address_.find(client);
+  if (it == player_address_.end()) return;
+  if (const auto from = players_from_.find(it->second);
+      from != players_from_.end() && --from->second == 0) {
+    players_from_.erase(from);
+  }
+  player_address_.erase(it);
+}
+
 Handshake::Member Handshake::leave(ClientId client) {
+  forget_address(client);
   if (spectators_.erase(client) > 0) return Member::Spectator;
   if (lobby_.erase(client) > 0) {
     seats_.release(client);

@@ -83,8 +83,9 @@ class Handshake {
 
   // `joined`: the connection was already welcomed or seated (a second Hello). A
   // player that passes every check is given its seat and its body in `simulation`.
+  // `address`: where it connects from, for max_players_per_address.
   HelloDecision decide(ClientId client, bool joined, const physics::wire::Hello& hello,
-                       Simulation& simulation);
+                       Simulation& simulation, const std::string& address = {});
   // Every seat is taken: the lobby's bodies are made in seat order (each at its seat's
   // spawn point when free), so that the world, body ids included, is the same whatever
   // order the players connected in. The lobby is empty and open afterwards.
@@ -105,7 +106,10 @@ class Handshake {
  private:
   HelloDecision decide_spectator(ClientId client, HelloDecision decision);
   HelloDecision decide_player(ClientId client, const physics::wire::Hello& hello,
-                              Simulation& simulation, HelloDecision decision);
+                              Simulation& simulation, const std::string& address,
+                              HelloDecision decision);
+  // Forgets a seated player's address (its count per address).
+  void forget_address(ClientId client);
 
   std::optional<std::string> token_;
   std::size_t max_clients_;
@@ -115,6 +119,9 @@ class Handshake {
   std::map<ClientId, wire::ViewSettings> lobby_;  // seated players not yet welcomed
   bool lobby_open_;
   std::set<ClientId> spectators_;
+  std::size_t max_players_per_address_;              // 0: no cap
+  std::map<ClientId, std::string> player_address_;   // seated players (lobby included)
+  std::map<std::string, std::size_t> players_from_;  // seated players per address
 };
 
 }  // namespace server

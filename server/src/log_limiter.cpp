@@ -10,7 +10,7 @@ namespace server {
 LogLimiter::LogLimiter(std::size_t lines_per_window, clock::duration window)
     : lines_per_window_(lines_per_window), window_(window) {}
 
-bool LogLimiter::admit(const char* cause, clock::time_point now) {
+bool LogLimiter::admit(const char* cause, clock::time_point now, const std::string& address) {
   Window& w = causes_[cause];
   if (now - w.started >= window_) {
     // The previous window's suppressed lines are reported by flush(); keep them.
@@ -25,15 +25,17 @@ bool LogLimiter::admit(const char* cause, clock::time_point now) {
   }
   ++w.suppressed;
   ++suppressed_total_;
+  if (!address.empty() && w.addresses.size() < kMaxCountedAddresses) w.addresses.insert(address);
   return false;
 }
 
-void LogLimiter::flush(clock::time_point now,
-                       const std::function<void(const std::string&, std::uint64_t)>& report) {
+void LogLimiter::flush(
+    clock::time_point now,
+    const std::function<void(const std::string&, std::uint64_t, std::size_t)>& report) {
   for (auto& [cause, w] : causes_) {
     if (now - w.started < window_ || w.suppressed == 0) continue;
-    report(cause, w.suppressed);
-    w = Window{now, 0, 0};
+    report(cause, w.suppressed, w.addresses.size());
+    w = Window{now, 0, 0, {}};
   }
 }
 

@@ -119,6 +119,10 @@ Readiness readiness(const ServerStats& stats, const MetricsInfo& info,
   if (since > allowed) {
     return {false, "last tick " + number(since) + " s ago (allowed " + number(allowed) + " s)"};
   }
+  if (stats.last_tick_seconds > period) {
+    return {false, "overrunning: the last tick took " + number(stats.last_tick_seconds) +
+                       " s, over its period of " + number(period) + " s"};
+  }
   return {true, "stepping on time"};
 }
 

@@ -25,7 +25,8 @@ struct Readiness {
   std::string reason;  // one line: why (not) ready
 };
 // Ready while not shutting down and stepping on time: with the fixed timestep, a
-// tick stepped within the last max(1 s, 10 periods). Lockstep ticks wait for the
+// tick stepped within the last max(1 s, 10 periods), and the last tick's step and
+// encoding within its period (not overrunning). Lockstep ticks wait for the
 // players by design, so a lockstep server is ready while it listens.
 Readiness readiness(const ServerStats& stats, const MetricsInfo& info,
                     std::chrono::steady_clock::time_point now);

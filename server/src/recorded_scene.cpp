@@ -1,8 +1,10 @@
 #include "server/recorded_scene.h"
 
 #include <cmath>
+#include <string>
 
 #include "physics/fnv_hash.h"
+#include "physics/formulas.h"
 
 namespace server {
 namespace {
@@ -134,6 +136,33 @@ bool from_recorded(const rec::WorldSettings& in, phys::WorldSettings& s) {
   return true;
 }
 
+// Finite, and within the scene format's largest |coordinate| on both axes.
+bool within_coordinate_limit(phys::Vec2 p) {
+  return std::fabs(p.x) <= scene::kMaxCoordinate && std::fabs(p.y) <= scene::kMaxCoordinate;
+}
+
+// The scene loader's checks of a body that the core's own (at build time) leave out:
+// position within the coordinate limit, speed and acceleration within the world's,
+// a static body still, and inside the bounds. "" when none fails.
+std::string body_problem(const phys::BodyDef& def, const phys::WorldSettings& world) {
+  if (!within_coordinate_limit(def.position))
+    return "position is not finite or beyond the largest |coordinate| 1e7";
+  if (!phys::is_finite(def.velocity) || !(phys::length(def.velocity) <= world.max_speed))
+    return "velocity is not finite or above world.max_speed";
+  if (!phys::is_finite(def.acceleration) ||
+      !(phys::length(def.acceleration) <= world.max_acceleration))
+    return "acceleration is not finite or above the core's acceleration limit";
+  if (def.motion == phys::Motion::Static &&
+      (def.velocity != phys::Vec2{} || def.acceleration != phys::Vec2{}))
+    return "a static body has a velocity or an acceleration";
+  if (world.has_bounds &&
+      !phys::contains(
+          world.bounds,
+          phys::box_around(def.position, phys::half_size(def.shape, def.radius, def.half_extents))))
+    return "lies outside world.bounds";
+  return {};
+}
+
 }  // namespace
 
 physics::recording::Scene to_recorded(const scene::SceneDef& scene) {
@@ -174,8 +203,12 @@ std::variant<scene::SceneDef, std::string> from_recorded(const physics::recordin
   }
   out.bodies.resize(static_cast<std::size_t>(body_count));
   for (int i = 0; i < in.bodies_size(); ++i) {
-    if (!from_recorded(in.bodies(i), out.bodies[static_cast<std::size_t>(i)])) {
+    phys::BodyDef& body = out.bodies[static_cast<std::size_t>(i)];
+    if (!from_recorded(in.bodies(i), body)) {
       return "scene.bodies[" + std::to_string(i) + "]: unknown shape";
+    }
+    if (std::string problem = body_problem(body, out.world); !problem.empty()) {
+      return "scene.bodies[" + std::to_string(i) + "]: " + problem;
     }
   }
   if (in.spawn_points_size() == 0) return std::string("scene.spawn_points: empty");
@@ -184,7 +217,9 @@ std::variant<scene::SceneDef, std::string> from_recorded(const physics::recordin
   }
   for (const rec::Vec2& point : in.spawn_points()) {
     const phys::Vec2 p = from_recorded(point);
-    if (!phys::is_finite(p)) return std::string("scene.spawn_points: not finite");
+    if (!within_coordinate_limit(p)) {
+      return std::string("scene.spawn_points: not finite or beyond the largest |coordinate| 1e7");
+    }
     out.spawn_points.push_back(p);
   }
   if (!in.has_player() || !from_recorded(in.player(), out.player)) {

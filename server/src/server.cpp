@@ -65,9 +65,22 @@ void check_config(const ServerConfig& config) {
   if (config.hello_backoff.count() < 0 || config.hello_backoff_max < config.hello_backoff) {
     throw std::invalid_argument("need 0 <= hello_backoff <= hello_backoff_max");
   }
+  if (config.seat_backoff.count() < 0) throw std::invalid_argument("seat_backoff must be >= 0");
+  if (config.max_players_per_address < 0) {
+    throw std::invalid_argument("max_players_per_address must be >= 0 (0: no cap)");
+  }
+  const OpsHttpLimits& http = config.metrics_limits;
+  if (http.max_connections < 1 || http.max_connections_per_address < 1 ||
+      http.request_deadline.count() <= 0 || http.max_header_bytes < 64 ||
+      !(http.requests_per_second >= 0.0) || !std::isfinite(http.requests_per_second) ||
+      !(http.request_burst >= 0.0) || !std::isfinite(http.request_burst)) {
+    throw std::invalid_argument(
+        "metrics limits: connections >= 1, deadline > 0, header bytes >= 64, finite rates >= 0");
+  }
   for (const double rate :
-       {config.connects_per_second, config.connect_burst, config.peer_bytes_per_second,
-        config.peer_byte_burst, config.peer_messages_per_second, config.peer_message_burst}) {
+       {config.connects_per_second, config.connect_burst, config.full_state_bytes_per_second,
+        config.peer_bytes_per_second, config.peer_byte_burst, config.peer_messages_per_second,
+        config.peer_message_burst}) {
     if (!(rate >= 0.0) || !std::isfinite(rate)) {
       throw std::invalid_argument("rate limits must be finite and >= 0 (0: unlimited)");
     }
@@ -81,6 +94,7 @@ AddressLimitsConfig address_limits_config(const ServerConfig& config) {
   limits.failures_before_backoff = config.failed_hellos_before_backoff;
   limits.backoff_base = config.hello_backoff;
   limits.backoff_max = config.hello_backoff_max;
+  limits.seat_backoff = config.seat_backoff;
   return limits;
 }
 
@@ -129,6 +143,7 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
   limits_.idle_timeout = config_.idle_timeout;
   limits_.close_linger = config_.close_linger;
   limits_.socket_send_buffer_bytes = config_.socket_send_buffer_bytes;
+  limits_.full_state_bytes_per_second = config_.full_state_bytes_per_second;
   limits_.bytes_per_second = config_.peer_bytes_per_second;
   limits_.byte_burst = config_.peer_byte_burst;
   limits_.messages_per_second = config_.peer_messages_per_second;
@@ -176,8 +191,9 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
     info.tick_rate = simulation_.tick_rate();
     info.lockstep = config_.lockstep;
     info.max_clients = static_cast<std::size_t>(config_.max_clients);
-    metrics_ = std::make_unique<MetricsHttp>(
-        config_.bind, *config_.metrics_port, [this] { return stats(); }, info);
+    metrics_ = std::make_unique<OpsHttp>(
+        config_.metrics_bind, *config_.metrics_port, config_.metrics_limits,
+        [this] { return stats(); }, info);
   }
   if (config_.agones_sdk_port) {
     AgonesSdkConfig agones;
@@ -189,8 +205,9 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
 }
 
 Server::Impl::~Impl() {
-  // The HTTP threads read stats_: stop them first.
+  // The HTTP threads read stats_ (and stats() reads metrics_): stop them first.
   agones_.reset();
+  if (metrics_) metrics_->stop();
   metrics_.reset();
   // Sessions hold sockets of io_; drop them before io_ goes.
   sessions_.clear();
@@ -221,8 +238,13 @@ void Server::Impl::stop() {
 }
 
 ServerStats Server::Impl::stats() const {
-  std::lock_guard<std::mutex> lock(stats_mutex_);
-  return stats_;
+  ServerStats copy;
+  {
+    std::lock_guard<std::mutex> lock(stats_mutex_);
+    copy = stats_;
+  }
+  if (metrics_) copy.ops_http = metrics_->counters();
+  return copy;
 }
 
 // ---- the public face ----

@@ -49,7 +49,7 @@ void Server::Impl::do_accept() {
     auto session = std::make_shared<Session>(std::move(socket), id, *this, limits_);
     sessions_.emplace(id, session);
     publish_connection_counts();
-    if (log_admits("connection")) {
+    if (log_admits("connection", session->address())) {
       log_with(spdlog::level::info, {.client = id, .address = session->peer()},
                "connection {} from {}", id, session->peer());
     }
@@ -61,21 +61,46 @@ void Server::Impl::do_accept() {
 
 // Connections that have not joined have caps of their own, in all and per address,
 // so that a stranger's silent sockets never take a player's seat (and each is closed
-// at the handshake deadline anyway).
+// at the handshake deadline anyway). Over a cap, the oldest pending connection that
+// has sent nothing yet (of the same address, for the address's cap) makes room for
+// the newcomer: a would-be player sends its Hello at once, so an idle socket is the
+// first to go, and a real player from a new address always gets in. Only when every
+// pending one has sent bytes is the newcomer refused.
 void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
   std::size_t pending = 0;
   std::size_t from_address = 0;
+  Session* oldest_silent = nullptr;
+  Session* oldest_silent_here = nullptr;
+  const auto older = [](Session* than, Session& session) {
+    return than == nullptr || session.accepted_at() < than->accepted_at();
+  };
   for (const auto& [id, session] : sessions_) {
     if (session->joined() || session->closing()) continue;
     ++pending;
-    if (session->address() == fresh.address()) ++from_address;
+    const bool here = session->address() == fresh.address();
+    if (here) ++from_address;
+    if (session.get() == &fresh || session->has_sent_bytes()) continue;
+    if (older(oldest_silent, *session)) oldest_silent = session.get();
+    if (here && older(oldest_silent_here, *session)) oldest_silent_here = session.get();
   }
-  if (pending > static_cast<std::size_t>(config_.max_pending)) {
+  const bool address_over =
+      from_address > static_cast<std::size_t>(config_.max_pending_per_address);
+  const bool all_over = pending > static_cast<std::size_t>(config_.max_pending);
+  if (!address_over && !all_over) return;
+  if (Session* victim = address_over ? oldest_silent_here : oldest_silent; victim != nullptr) {
+    update_stats([](ServerStats& s) { ++s.evicted_pending; });
+    victim->close_with_error(physics::wire::ERROR_SERVER_FULL,
+                             "silent too long while others wait to join: make room for a newer "
+                             "connection",
+                             DropReason::TooManyPending);
+    return;
+  }
+  if (all_over) {
     fresh.close_with_error(
         physics::wire::ERROR_SERVER_FULL,
         "too many connections still handshaking (" + std::to_string(config_.max_pending) + ")",
         DropReason::TooManyPending);
-  } else if (from_address > static_cast<std::size_t>(config_.max_pending_per_address)) {
+  } else {
     fresh.close_with_error(physics::wire::ERROR_SERVER_FULL,
                            "too many connections still handshaking from " + fresh.address() + " (" +
                                std::to_string(config_.max_pending_per_address) + ")",
@@ -98,8 +123,8 @@ void Server::Impl::refuse_at_accept(asio::ip::tcp::socket& socket, const std::st
   socket.close(ignored);
 }
 
-bool Server::Impl::log_admits(const char* cause) {
-  if (log_limiter_.admit(cause, std::chrono::steady_clock::now())) return true;
+bool Server::Impl::log_admits(const char* cause, const std::string& address) {
+  if (log_limiter_.admit(cause, std::chrono::steady_clock::now(), address)) return true;
   update_stats([](ServerStats& s) { ++s.suppressed_log_lines; });
   return false;
 }
@@ -129,24 +154,35 @@ void Server::Impl::on_closed(Session& session, DropReason reason) {
     address_limits_.on_failed_hello(session.address(), std::chrono::steady_clock::now());
     update_stats([](ServerStats& s) { ++s.failed_hellos; });
   }
+  if (session.joined() && (reason == DropReason::LockstepStraggler ||
+                           reason == DropReason::NotReading || reason == DropReason::TooSlow)) {
+    address_limits_.on_player_dropped(session.address(), std::chrono::steady_clock::now());
+  }
   const Handshake::Member member =
       session.joined() ? handshake_.leave(id) : Handshake::Member::None;  // frees its seat
   const LogFields left{.client = id, .address = session.peer(), .reason = to_string(reason)};
+  const bool log_leave = session.joined() && log_admits("left", session.address());
   if (member == Handshake::Member::Spectator) {
-    log_with(spdlog::level::info, left, "spectator {} '{}' ({}) left: {}", id, session.name(),
-             session.peer(), to_string(reason));
+    if (log_leave) {
+      log_with(spdlog::level::info, left, "spectator {} '{}' ({}) left: {}", id, session.name(),
+               session.peer(), to_string(reason));
+    }
   } else if (member == Handshake::Member::Lobby) {
-    log_with(spdlog::level::info, left, "client {} '{}' ({}) left the lobby: {}", id,
-             session.name(), session.peer(), to_string(reason));
+    if (log_leave) {
+      log_with(spdlog::level::info, left, "client {} '{}' ({}) left the lobby: {}", id,
+               session.name(), session.peer(), to_string(reason));
+    }
   } else if (session.joined()) {
     // A straggler has left the world already (drop_stragglers).
     if (simulation_.leave(id)) feeds_.leave(id);
     input_timing_.forget(id);
     stragglers_.forget(id);
     told_clamped_.erase(id);
-    log_with(spdlog::level::info, left, "client {} '{}' ({}) left: {}", id, session.name(),
-             session.peer(), to_string(reason));
-  } else if (log_admits("closed before joining")) {
+    if (log_leave) {
+      log_with(spdlog::level::info, left, "client {} '{}' ({}) left: {}", id, session.name(),
+               session.peer(), to_string(reason));
+    }
+  } else if (log_admits("closed before joining", session.address())) {
     log_with(spdlog::level::info, left, "connection {} ({}) closed before joining: {}", id,
              session.peer(), to_string(reason));
   }

@@ -3,6 +3,7 @@
 // lobby's Welcomes once every seat is taken.
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -16,7 +17,23 @@
 namespace server {
 
 void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello) {
-  HelloDecision decision = handshake_.decide(session.id(), session.joined(), hello, simulation_);
+  // An address whose players were dropped for straggling or not reading waits
+  // before it takes a seat again (address_limits.h).
+  if (!session.joined() && !hello.spectate()) {
+    const auto wait =
+        address_limits_.seat_wait(session.address(), std::chrono::steady_clock::now());
+    if (wait.count() > 0) {
+      session.close_with_error(
+          physics::wire::ERROR_RATE_LIMITED,
+          "a player from " + session.address() +
+              " was dropped for straggling or not reading; take a seat again in " +
+              std::to_string(std::chrono::ceil<std::chrono::milliseconds>(wait).count()) + " ms",
+          DropReason::SeatBackoff);
+      return;
+    }
+  }
+  HelloDecision decision =
+      handshake_.decide(session.id(), session.joined(), hello, simulation_, session.address());
   // Held from its check on, whatever follows; on_closed forgets it.
   if (decision.contacts) feeds_.subscribe_contacts(session.id(), std::move(*decision.contacts));
   switch (decision.outcome) {
@@ -34,10 +51,12 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
       session.set_joined(decision.name);
       address_limits_.on_joined(session.address());
       publish_connection_counts();
-      log_with(spdlog::level::info, {.client = session.id(), .address = session.peer()},
-               "client {} '{}' ({}) seated in the lobby at seat {} ({} of {})", session.id(),
-               session.name(), session.peer(), decision.seat, handshake_.seats().taken(),
-               handshake_.seats().size());
+      if (log_admits("joined", session.address())) {
+        log_with(spdlog::level::info, {.client = session.id(), .address = session.peer()},
+                 "client {} '{}' ({}) seated in the lobby at seat {} ({} of {})", session.id(),
+                 session.name(), session.peer(), decision.seat, handshake_.seats().taken(),
+                 handshake_.seats().size());
+      }
       if (decision.lobby_full) open_lobby();
       return;
     case HelloDecision::Outcome::Player:
@@ -53,10 +72,12 @@ void Server::Impl::welcome_player(Session& session, phys::BodyId body,
   feeds_.join(session.id(), view, body.packed());
   publish_connection_counts();
   const std::uint32_t seat = handshake_.seats().seat_of(session.id()).value_or(0);
-  log_with(spdlog::level::info,
-           {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
-           "client {} '{}' ({}) joined at tick {} in seat {} with body {}", session.id(),
-           session.name(), session.peer(), simulation_.current_tick(), seat, body.packed());
+  if (log_admits("joined", session.address())) {
+    log_with(spdlog::level::info,
+             {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
+             "client {} '{}' ({}) joined at tick {} in seat {} with body {}", session.id(),
+             session.name(), session.peer(), simulation_.current_tick(), seat, body.packed());
+  }
   physics::wire::ServerMessage welcome =
       make_welcome(simulation_, session.id(), body, config_.lockstep, wire::to_wire(view),
                    static_cast<std::uint32_t>(config_.max_clients));
@@ -91,10 +112,12 @@ void Server::Impl::open_lobby() {
 void Server::Impl::welcome_spectator(Session& session, const wire::ViewSettings& view) {
   feeds_.join(session.id(), view, std::nullopt);
   publish_connection_counts();
-  log_with(spdlog::level::info,
-           {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
-           "spectator {} '{}' ({}) joined at tick {}", session.id(), session.name(), session.peer(),
-           simulation_.current_tick());
+  if (log_admits("joined", session.address())) {
+    log_with(spdlog::level::info,
+             {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
+             "spectator {} '{}' ({}) joined at tick {}", session.id(), session.name(), session.peer(),
+             simulation_.current_tick());
+  }
   physics::wire::ServerMessage welcome =
       make_welcome(simulation_, session.id(), phys::BodyId::invalid(), config_.lockstep,
                    wire::to_wire(view), static_cast<std::uint32_t>(config_.max_clients));

@@ -24,10 +24,17 @@ void Server::Impl::arm_housekeeping() {
     std::vector<std::shared_ptr<Session>> all;
     all.reserve(sessions_.size());
     for (const auto& [id, session] : sessions_) all.push_back(session);
-    for (const auto& session : all) session->check_deadlines(now);
-    log_limiter_.flush(now, [](const std::string& cause, std::uint64_t count) {
-      spdlog::info("{} log line(s) of cause '{}' suppressed in the last second", count, cause);
-    });
+    for (const auto& session : all) {
+      session->check_deadlines(now);
+      drop_if_not_reading(*session, now);
+    }
+    log_limiter_.flush(
+        now, [](const std::string& cause, std::uint64_t count, std::size_t addresses) {
+          spdlog::info(
+              "{} more '{}' line(s) from {} address(es) in the last second, not logged one "
+              "by one",
+              count, cause, addresses);
+        });
     if (config_.stats_log_interval.count() > 0 && now >= next_stats_line_ && !stopping_) {
       if (next_stats_line_ != std::chrono::steady_clock::time_point{}) log_stats_line();
       next_stats_line_ = now + config_.stats_log_interval;
@@ -36,6 +43,24 @@ void Server::Impl::arm_housekeeping() {
     // io_context runs out of work and run() returns.
     if (!stopping_ || !sessions_.empty()) arm_housekeeping();
   });
+}
+
+// A joined client must read to keep its place: one that has acknowledged none of
+// the snapshots outstanding for idle_timeout is dropped, whatever else it sends
+// (Pings renew only the receive deadline).
+void Server::Impl::drop_if_not_reading(Session& session,
+                                       std::chrono::steady_clock::time_point now) {
+  if (!session.joined() || session.closing() || !feeds_.has(session.id())) return;
+  if (feeds_.unacknowledged(session.id()) == 0) {
+    session.note_read_proof(now);
+    return;
+  }
+  if (now - session.read_proof() < config_.idle_timeout) return;
+  session.close_with_error(physics::wire::ERROR_TOO_SLOW,
+                           "no snapshot acknowledged for " +
+                               std::to_string(config_.idle_timeout.count()) +
+                               " ms: a client must read (and Ack) to keep its place",
+                           DropReason::NotReading);
 }
 
 void Server::Impl::log_stats_line() {

@@ -19,7 +19,7 @@
 #include "handshake.h"
 #include "input_timing.h"
 #include "log_limiter.h"
-#include "metrics_http.h"
+#include "ops_http.h"
 #include "physics/clock.h"
 #include "physics/fixed_timestep.h"
 #include "server/lockstep_gate.h"
@@ -57,8 +57,9 @@ class Server::Impl final : public SessionHost {
   // Refuses a connection at accept, without a session: one Error, written if the
   // socket takes it at once, then closed.
   void refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text);
-  // Per-cause log limit (see log_limiter.h): false means the line is counted, not written.
-  bool log_admits(const char* cause);
+  // Per-cause log limit (see log_limiter.h): false means the line is counted (with its
+  // address), not written. Every line a stranger can cause goes through it.
+  bool log_admits(const char* cause, const std::string& address = {});
   void start_fixed_ticks();
   void arm_tick_timer();
   void on_tick_timer();
@@ -76,6 +77,7 @@ class Server::Impl final : public SessionHost {
   TickResult run_one_tick(std::optional<std::chrono::steady_clock::time_point> scheduled);
   void broadcast(const TruthFrame& frame);
   void arm_housekeeping();
+  void drop_if_not_reading(Session& session, std::chrono::steady_clock::time_point now);
   void begin_shutdown();
 
   void on_hello(Session& session, const physics::wire::Hello& hello);
@@ -127,7 +129,7 @@ class Server::Impl final : public SessionHost {
   InputTiming input_timing_;
   std::chrono::steady_clock::duration tick_period_{};
   std::chrono::steady_clock::time_point next_stats_line_{};
-  std::unique_ptr<MetricsHttp> metrics_;
+  std::unique_ptr<OpsHttp> metrics_;
   std::unique_ptr<AgonesSdk> agones_;
 
   mutable std::mutex stats_mutex_;

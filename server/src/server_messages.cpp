@@ -2,6 +2,7 @@
 // Hello aside (server_handshake.cpp).
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <string>
 
 #include "handshake.h"
@@ -52,10 +53,12 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       on_full_state_request(session);
       return;
     case Kind::kBye:
-      log_with(spdlog::level::info,
-               {.client = session.id(), .address = session.peer(),
-                .reason = to_string(DropReason::ClientBye)},
-               "client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
+      if (log_admits("bye", session.address())) {
+        log_with(spdlog::level::info,
+                 {.client = session.id(), .address = session.peer(),
+                  .reason = to_string(DropReason::ClientBye)},
+                 "client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
+      }
       session.close_now(DropReason::ClientBye);
       return;
     case Kind::KIND_NOT_SET:
@@ -68,7 +71,15 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
 }
 
 void Server::Impl::on_ack(Session& session, const physics::wire::Ack& ack) {
-  if (feeds_.ack(session.id(), ack.tick(), clock_.now()) == AckResult::Accepted) return;
+  // Only an Ack that takes snapshots off the window proves the client reads: the
+  // same old Ack again does not.
+  const std::size_t before = feeds_.unacknowledged(session.id());
+  if (feeds_.ack(session.id(), ack.tick(), clock_.now()) == AckResult::Accepted) {
+    if (feeds_.unacknowledged(session.id()) < before) {
+      session.note_read_proof(std::chrono::steady_clock::now());
+    }
+    return;
+  }
   update_stats([](ServerStats& s) { ++s.invalid_acks; });
   session.send(wire::make_error(physics::wire::ERROR_INVALID_ACK,
                                 "Ack for tick " + std::to_string(ack.tick()) +
@@ -77,6 +88,20 @@ void Server::Impl::on_ack(Session& session, const physics::wire::Ack& ack) {
 }
 
 void Server::Impl::on_full_state_request(Session& session) {
+  // Each full state costs the whole world's bytes: counted against the client's
+  // budget, so that asking again and again cannot multiply what it is sent.
+  if (const auto wait = session.full_state_wait(std::chrono::steady_clock::now());
+      wait.count() > 0) {
+    update_stats([](ServerStats& s) { ++s.rate_limited; });
+    session.send(wire::make_error(
+        physics::wire::ERROR_RATE_LIMITED,
+        "full states over this client's budget of " +
+            std::to_string(static_cast<long long>(config_.full_state_bytes_per_second)) +
+            " bytes a second; ask again in " +
+            std::to_string(std::chrono::ceil<std::chrono::milliseconds>(wait).count()) + " ms",
+        false));
+    return;
+  }
   if (feeds_.request_full_state(session.id()) == FullStateResult::Accepted) return;
   update_stats([](ServerStats& s) { ++s.rate_limited; });
   session.send(wire::make_error(physics::wire::ERROR_RATE_LIMITED,

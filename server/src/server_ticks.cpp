@@ -211,6 +211,7 @@ void Server::Impl::broadcast(const TruthFrame& frame) {
     // Held by a copy: a session that turns out too slow closes, and leaves the map.
     const std::shared_ptr<Session> session = it->second;
     if (session->closing()) continue;
+    if (out.full) session->spend_full_state(out.shared->size() + out.tail.size());
     if (const auto margin = input_timing_.take_least_margin(out.client)) {
       // Appended to the client's own bytes: a second Snapshot message merges into one.
       physics::wire::Snapshot timing;

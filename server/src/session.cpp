@@ -4,6 +4,7 @@
 #include <exception>
 #include <utility>
 
+#include "hello_widths.h"
 #include "wire/messages.h"
 
 namespace server {
@@ -17,6 +18,8 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& ho
       reader_(std::min(limits.max_hello_bytes, limits.max_message_bytes)),
       byte_bucket_(limits.bytes_per_second, limits.byte_burst, clock::now()),
       message_bucket_(limits.messages_per_second, limits.message_burst, clock::now()),
+      full_state_bucket_(limits.full_state_bytes_per_second,
+                         2.0 * limits.full_state_bytes_per_second, clock::now()),
       resume_timer_(socket_.get_executor()),
       accepted_(clock::now()),
       last_received_(accepted_) {
@@ -94,6 +97,7 @@ void Session::do_read() {
 
 void Session::on_read(std::size_t bytes) {
   last_received_ = clock::now();
+  received_any_ = received_any_ || bytes > 0;
   host_.on_bytes(0, bytes);
   byte_bucket_.spend(static_cast<double>(bytes), last_received_);
   if (!closing_) {
@@ -151,6 +155,12 @@ void Session::handle_frames() {
       return;
     }
     message_bucket_.spend(1.0, now);
+    if (message.has_hello()) {
+      if (const std::optional<WideField> wide = find_wide_hello_field(frame)) {
+        close_with_error(wide->code, wide->text, wide->reason);
+        return;
+      }
+    }
     // A message handler that throws (std::bad_alloc, say) takes down this session only: every
     // other session and the tick loop go on.
     try {

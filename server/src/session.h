@@ -60,7 +60,8 @@ struct SessionLimits {
   double message_burst = 8192;
   std::chrono::milliseconds idle_timeout{10000};
   std::chrono::milliseconds close_linger{1000};
-  int socket_send_buffer_bytes = 0;  // 0: the OS default
+  int socket_send_buffer_bytes = 0;                // 0: the OS default
+  double full_state_bytes_per_second = 64 * 1024;  // bursts of twice that
 };
 
 class Session : public std::enable_shared_from_this<Session> {
@@ -93,7 +94,22 @@ class Session : public std::enable_shared_from_this<Session> {
     joined_ = true;
     name_ = std::move(name);
     reader_.set_max_message_bytes(limits_.max_message_bytes);
+    read_proof_ = clock::now();
   }
+  clock::time_point accepted_at() const { return accepted_; }
+  // True once any byte has arrived from the peer (a silent socket has sent none).
+  bool has_sent_bytes() const { return received_any_; }
+  // When the client last proved it reads: an Ack that took snapshots off its
+  // window, or a moment with none outstanding. The server drops a joined client
+  // whose proof is older than idle_timeout, whatever else it sends.
+  clock::time_point read_proof() const { return read_proof_; }
+  void note_read_proof(clock::time_point now) { read_proof_ = now; }
+  // The full states sent to this client, against their byte budget.
+  void spend_full_state(std::size_t bytes) {
+    full_state_bucket_.spend(static_cast<double>(bytes), clock::now());
+  }
+  // Zero when a requested full state fits the budget now; else how long until it does.
+  clock::duration full_state_wait(clock::time_point now) { return full_state_bucket_.wait(now); }
   // The peer's address without the port, for the per-address limits.
   const std::string& address() const { return address_; }
   const std::string& name() const { return name_; }
@@ -139,6 +155,7 @@ class Session : public std::enable_shared_from_this<Session> {
   wire::FrameReader reader_;
   TokenBucket byte_bucket_;
   TokenBucket message_bucket_;
+  TokenBucket full_state_bucket_;
   asio::steady_timer resume_timer_;
   bool resume_armed_ = false;
   // Whole frames may still be buffered in reader_: handle them before reading more.
@@ -157,6 +174,8 @@ class Session : public std::enable_shared_from_this<Session> {
   DropReason close_reason_ = DropReason::Disconnected;
   clock::time_point accepted_;
   clock::time_point last_received_;
+  clock::time_point read_proof_;
+  bool received_any_ = false;
   clock::time_point write_started_;
   clock::time_point close_deadline_;
 };

@@ -15,6 +15,8 @@ server::ServerConfig test_server_config(bool lockstep) {
   // the per-address defences against strangers would refuse it.
   config.failed_hellos_before_backoff = 1000000;
   config.connects_per_second = 0.0;
+  config.max_players_per_address = 0;
+  config.seat_backoff = std::chrono::milliseconds(0);
   return config;
 }
 

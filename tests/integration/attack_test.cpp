@@ -230,7 +230,11 @@ TEST(Attack, AnHonestClientAtOneKilohertzNeverMeetsTheRateLimits) {
 // churn, so it is neither dropped nor sent a frame larger than the world's full state
 // when it reads again.
 TEST(Attack, ChurnWhileAClientStallsNeitherDropsItNorBloatsItsFrames) {
-  RunningServer server(attack_config(), scene::default_scene());
+  server::ServerConfig config = attack_config();
+  // A client must acknowledge within the idle timeout to keep its place: the stall,
+  // the probe and the read-back below take about 11 s.
+  config.idle_timeout = 20s;
+  RunningServer server(config, scene::default_scene());
   RawPeer stalled(server.port());
   stalled.set_receive_buffer(4096);
   ASSERT_TRUE(stalled.send(hello_message("stalled")));

@@ -20,6 +20,10 @@ expect_usage_error("server --lockstep-pace slow" "--lockstep-pace" ${SERVER} --l
 expect_usage_error("server --log-format xml" "--log-format" ${SERVER} --log-format xml)
 expect_usage_error("server --lockstep-players 0" "--lockstep-players" ${SERVER} --lockstep-players 0)
 expect_usage_error("server --metrics-port 70000" "0 to 65535" ${SERVER} --metrics-port 70000)
+expect_usage_error("server --metrics-bind nowhere" "not an IP address" ${SERVER}
+                   --metrics-bind nowhere)
+expect_usage_error("server --max-players-per-address -1" "--max-players-per-address" ${SERVER}
+                   --max-players-per-address -1)
 expect_usage_error("AGONES_SDK_HTTP_PORT=abc" "AGONES_SDK_HTTP_PORT"
                    ${CMAKE_COMMAND} -E env AGONES_SDK_HTTP_PORT=abc ${SERVER} --port 0)
 
@@ -35,7 +39,8 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "server --help: exit ${rc}")
 endif()
 foreach(text "ERROR_NO_SPAWN" "fits 58" "--lockstep-players" "--lockstep-max-timeouts"
-        "--metrics-port" "--log-format")
+        "--metrics-port" "--metrics-bind" "--log-format" "--max-players-per-address"
+        "acknowledges none of the snapshots")
   string(FIND "${help}" "${text}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "server --help does not mention '${text}':\n${help}")

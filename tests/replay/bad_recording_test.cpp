@@ -208,6 +208,45 @@ TEST(BadRecording, HeadersWithoutAUsableRunAreRefusedAtTheHeader) {
                "client recording");
 }
 
+// Found by tests/fuzz/replay_fuzz (a longer run): bodies at x = -1e308 and +1e308 in
+// a world without bounds made the broadphase's cell-growing loop endless, so
+// physics-sim --replay hung at the first step. The recording's scene gets the scene
+// loader's checks: such positions (beyond |coordinate| 1e7), spawn points there, and
+// speeds over world.max_speed are refused at the header. The seed
+// tests/fuzz/corpus/replay/bodies_at_plus_and_minus_1e308 is this recording.
+TEST(BadRecording, BodiesBeyondTheCoordinateLimitAreRefusedAtTheHeader) {
+  const std::string bytes = small_recording();
+  physics::recording::Header header = header_of(bytes);
+  physics::recording::Scene& scene = *header.mutable_server()->mutable_scene();
+  scene.mutable_world()->set_has_bounds(false);
+  ASSERT_GE(scene.bodies_size(), 2);
+  scene.mutable_bodies(0)->mutable_position()->set_x(-1e308);
+  scene.mutable_bodies(1)->mutable_position()->set_x(1e308);
+  std::string prefix;
+  wire::append_varint_prefix(header.ByteSizeLong(), prefix);
+  const std::uint64_t at = recording::kPreambleBytes + prefix.size();
+  expect_error(recording::encode_recording(header, {}), at,
+               "scene.bodies[0]: position is not finite or beyond the largest |coordinate| 1e7");
+
+  physics::recording::Header far_spawn = header_of(bytes);
+  far_spawn.mutable_server()->mutable_scene()->mutable_spawn_points(0)->set_y(2e7);
+  prefix.clear();
+  wire::append_varint_prefix(far_spawn.ByteSizeLong(), prefix);
+  expect_error(recording::encode_recording(far_spawn, {}),
+               recording::kPreambleBytes + prefix.size(),
+               "scene.spawn_points: not finite or beyond");
+
+  physics::recording::Header fast = header_of(bytes);
+  physics::recording::BodyDef& body = *fast.mutable_server()->mutable_scene()->mutable_bodies(
+      fast.server().scene().bodies_size() - 1);
+  body.set_is_static(false);
+  body.mutable_velocity()->set_x(1e6);
+  prefix.clear();
+  wire::append_varint_prefix(fast.ByteSizeLong(), prefix);
+  expect_error(recording::encode_recording(fast, {}), recording::kPreambleBytes + prefix.size(),
+               "velocity is not finite or above world.max_speed");
+}
+
 // Found by tests/fuzz/replay_fuzz: a tick rate that is finite and above zero but
 // so small (a denormal) that dt = 1 / rate is infinite reached World::step's assert.
 // Such rates are refused at the header, by the range physics-server's --tick-rate

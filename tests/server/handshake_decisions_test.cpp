@@ -221,6 +221,28 @@ TEST(HandshakeDecisions, AServerFullOfPlayersRefusesTheNextOneButNotASpectator) 
   EXPECT_EQ(next.seat, 0u);
 }
 
+TEST(HandshakeDecisions, PlayersFromOneAddressAreCappedSpectatorsAndOthersAreNot) {
+  server::Simulation simulation(server_test::free_space_scene());
+  server::ServerConfig config = config_with(10);
+  config.max_players_per_address = 2;
+  Handshake handshake(config);
+  ASSERT_EQ(handshake.decide(1, false, hello(), simulation, "10.0.0.1").outcome, Outcome::Player);
+  ASSERT_EQ(handshake.decide(2, false, hello(), simulation, "10.0.0.1").outcome, Outcome::Player);
+  const Counts before = counts_of(handshake, simulation);
+  const HelloDecision third = handshake.decide(3, false, hello(), simulation, "10.0.0.1");
+  expect_refused(third, pw::ERROR_SERVER_FULL, DropReason::AddressFull);
+  EXPECT_EQ(third.refusal.text,
+            "too many players from 10.0.0.1: 2 joined (--max-players-per-address)");
+  EXPECT_EQ(counts_of(handshake, simulation), before);
+  EXPECT_EQ(handshake.decide(4, false, spectator_hello(), simulation, "10.0.0.1").outcome,
+            Outcome::Spectator);
+  EXPECT_EQ(handshake.decide(5, false, hello(), simulation, "10.0.0.2").outcome, Outcome::Player);
+  // One leaves: its address may seat one more.
+  EXPECT_EQ(handshake.leave(1), Handshake::Member::Player);
+  ASSERT_TRUE(simulation.leave(1));
+  EXPECT_EQ(handshake.decide(6, false, hello(), simulation, "10.0.0.1").outcome, Outcome::Player);
+}
+
 TEST(HandshakeDecisions, SpectatorsHaveTheirOwnCapAndNoRadiusView) {
   server::Simulation simulation(server_test::free_space_scene());
   Handshake handshake(config_with(1, 1));

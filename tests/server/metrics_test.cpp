@@ -84,6 +84,12 @@ TEST(Metrics, ReadyWhileTicksStepOnTimeNotBeforeNorAfter) {
   EXPECT_FALSE(stalled.ready);
   EXPECT_NE(stalled.reason.find("last tick"), std::string::npos);
   stats.last_tick_at = now;
+  stats.last_tick_seconds = 2.0 / 60.0;  // the last tick took two periods: overrunning
+  const server::Readiness overrunning = server::readiness(stats, info, now);
+  EXPECT_FALSE(overrunning.ready);
+  EXPECT_NE(overrunning.reason.find("overrunning"), std::string::npos);
+  stats.last_tick_seconds = 0.5 / 60.0;
+  EXPECT_TRUE(server::readiness(stats, info, now).ready);
   stats.shutting_down = true;
   EXPECT_FALSE(server::readiness(stats, info, now).ready);
 }

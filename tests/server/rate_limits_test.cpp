@@ -154,17 +154,23 @@ TEST(AddressLimits, MemoryIsBoundedAndABackedOffAddressIsKept) {
 TEST(LogLimiter, AdmitsAFewLinesPerCauseAndCountsTheRest) {
   LogLimiter limiter(3, 1s);
   int admitted = 0;
-  for (int i = 0; i < 100; ++i) admitted += limiter.admit("connection", kStart);
+  for (int i = 0; i < 100; ++i)
+    admitted += limiter.admit("connection", kStart, "10.0.0." + std::to_string(i % 60));
   EXPECT_EQ(admitted, 3);
   EXPECT_TRUE(limiter.admit("refused", kStart));  // another cause has its own share
   std::vector<std::pair<std::string, std::uint64_t>> reported;
-  auto report = [&](const std::string& cause, std::uint64_t n) { reported.emplace_back(cause, n); };
+  std::size_t addresses = 0;
+  auto report = [&](const std::string& cause, std::uint64_t n, std::size_t from) {
+    reported.emplace_back(cause, n);
+    addresses = from;
+  };
   limiter.flush(kStart + 500ms, report);
   EXPECT_TRUE(reported.empty());  // the window is not over yet
   limiter.flush(kStart + 1s, report);
   ASSERT_EQ(reported.size(), 1u);
   EXPECT_EQ(reported[0].first, "connection");
   EXPECT_EQ(reported[0].second, 97u);
+  EXPECT_EQ(addresses, 60u);  // the 97 suppressed lines came from 60 addresses
   EXPECT_EQ(limiter.suppressed_total(), 97u);
   // A fresh window admits again.
   EXPECT_TRUE(limiter.admit("connection", kStart + 1100ms));

@@ -67,9 +67,10 @@ int run(const Options& options) {
   // Realtime: a lockstep game's pace, so the tick budget means the same in both modes.
   config.lockstep_pace = server::ServerConfig::Pace::Realtime;
   config.max_clients = options.clients;
-  // Every slot connects from 127.0.0.1: the per-address connect rate is for strangers.
+  // Every slot connects from 127.0.0.1: the per-address limits are for strangers.
   config.connects_per_second = 1000.0;
   config.connect_burst = 1000.0;
+  config.max_players_per_address = 0;
   config.record_path = record_path.string();
   auto server = std::make_unique<server::Server>(config, scene);
   std::thread server_thread([&] { server->run(); });

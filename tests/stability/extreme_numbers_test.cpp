@@ -184,13 +184,18 @@ TEST_F(ExtremeNumbers, LightBodyHittingAHeavyOneConservesMomentum) {
 }
 
 TEST_F(ExtremeNumbers, BodiesFarOutStayFinite) {
-  // 1e12 m from the origin (a double still resolves 0.1 mm there).
+  // At the largest |coordinate| the core takes, 1e7 m from the origin (a double still
+  // resolves 2e-9 m there); beyond it, 1e12 m out, a body is refused.
   reset(WorldSettings{});
-  add(box_def({1.0e12, 1.0e12 - 0.5}, {5.0, 0.5}, Motion::Static));
-  const BodyId box = make_box({1.0e12, 1.0e12 + 3.0});
+  constexpr double kFar = 1.0e7;
+  add(box_def({kFar - 10.0, kFar - 10.5}, {5.0, 0.5}, Motion::Static));
+  const BodyId box = make_box({kFar - 10.0, kFar - 7.0});
   for (int step = 0; step < 240; ++step) world_.step(kDt);
-  expect_sane("1e12 m out");
-  EXPECT_NEAR(position(box).y, 1.0e12 + 0.5, 1.0e-3);
+  expect_sane("1e7 m out");
+  EXPECT_NEAR(position(box).y, kFar - 9.5, 1.0e-3);
+  BodyDefError error = BodyDefError::None;
+  EXPECT_FALSE(world_.add_body(box_def({1.0e12, 1.0e12}, {0.5, 0.5}), &error).is_valid());
+  EXPECT_EQ(error, BodyDefError::OutOfBounds);
 }
 
 }  // namespace

@@ -14,6 +14,8 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// The largest |coordinate| of every world, as of the scene format.
+constexpr double kMaxCoordinate = 1.0e7;
 
 BodyDefError refusal(const BodyDef& def) {
   World world;
@@ -140,6 +142,37 @@ TEST(BadBodyDef, TooManyBodies) {
   EXPECT_EQ(world.body_count(), 3u);
 }
 
+TEST(BadBodyDef, PositionBeyondTheCoordinateLimit) {
+  for (const Vec2 far : {Vec2{-1.0e308, 0.0}, Vec2{1.0e308, 0.0}, Vec2{0.0, 1.0e7 * 1.0000001}}) {
+    BodyDef def = good_circle();
+    def.position = far;
+    EXPECT_EQ(refusal(def), BodyDefError::OutOfBounds) << far.x << ", " << far.y;
+  }
+  BodyDef at_the_limit = good_box();
+  at_the_limit.position = {-kMaxCoordinate, kMaxCoordinate};
+  World world;
+  EXPECT_TRUE(world.add_body(at_the_limit).is_valid());
+}
+
+// Two circles far apart in the same world once made the grid's cell-growing loop
+// endless (their spread overflowed a double); now they are refused, and a step with
+// the farthest accepted bodies returns.
+TEST(BadBodyDef, BodiesAtPlusAndMinusTheLargestDoubleAreRefusedAndTheStepReturns) {
+  World world;
+  BodyDefError left = BodyDefError::None;
+  BodyDefError right = BodyDefError::None;
+  EXPECT_FALSE(world.add_body(circle_def({-1.0e308, 0.0}, 0.5), &left).is_valid());
+  EXPECT_FALSE(world.add_body(circle_def({1.0e308, 0.0}, 0.5), &right).is_valid());
+  EXPECT_EQ(left, BodyDefError::OutOfBounds);
+  EXPECT_EQ(right, BodyDefError::OutOfBounds);
+  ASSERT_TRUE(world.add_body(circle_def({-kMaxCoordinate, 0.0}, 0.5)).is_valid());
+  ASSERT_TRUE(world.add_body(circle_def({kMaxCoordinate, 0.0}, 0.5)).is_valid());
+  ASSERT_TRUE(world.add_body(circle_def({0.0, 0.0}, 0.5)).is_valid());
+  for (int i = 0; i < 10; ++i) world.step(kDt);
+  EXPECT_EQ(world.step_count(), 10u);
+  EXPECT_TRUE(all_finite(world.bodies()));
+}
+
 TEST(BadBodyDef, RefusalWithoutAnErrorPointerDoesNotCrash) {
   World world;
   BodyDef def = good_box();
@@ -176,6 +209,14 @@ TEST_F(BadInputs, NaNPositionAndVelocityAreRefused) {
   EXPECT_FALSE(world_.set_velocity(id, {0.0, -kInf}));
   EXPECT_EQ(state(id).position, (Vec2{1.0, 1.0}));
   EXPECT_EQ(state(id).velocity, (Vec2{}));
+}
+
+TEST_F(BadInputs, PositionBeyondTheCoordinateLimitIsRefused) {
+  const BodyId id = make_box({1.0, 1.0});
+  EXPECT_FALSE(world_.set_position(id, {1.0e308, 0.0}));
+  EXPECT_FALSE(world_.set_position(id, {0.0, -2.0e7}));
+  EXPECT_EQ(state(id).position, (Vec2{1.0, 1.0}));
+  EXPECT_TRUE(world_.set_position(id, {kMaxCoordinate, 0.0}));
 }
 
 TEST_F(BadInputs, AccelerationMagnitudeIsClampedToTheLimit) {

@@ -155,6 +155,25 @@ TEST(BruteForce, HandCheckedPairs) {
   EXPECT_EQ(sorted(pairs), (std::vector<BodyPair>{{0, 1}, {1, 2}}));
 }
 
+// The grid's build ends whatever boxes it is given: centres at plus and minus the
+// largest double (a spread no double holds) and far from the origin; the pairs are
+// still exact.
+TEST(UniformGridBuild, EndsOnSpreadsNoDoubleHolds) {
+  constexpr double kHuge = 1.0e308;
+  const std::vector<Aabb> boxes{{{-kHuge - 1.0, 0.0}, {-kHuge + 1.0, 1.0}},
+                                {{kHuge - 1.0, 0.0}, {kHuge + 1.0, 1.0}},
+                                {{0.0, 0.0}, {1.0, 1.0}},
+                                {{0.5, 0.5}, {1.5, 1.5}},
+                                {{1.0e12, -1.0e12}, {1.0e12 + 1.0, -1.0e12 + 1.0}}};
+  std::vector<BodyPair> expected;
+  find_pairs_brute_force(boxes, expected);
+  UniformGrid grid;
+  std::vector<BodyPair> pairs;
+  grid.find_pairs(boxes, pairs);
+  EXPECT_EQ(sorted(pairs), sorted(expected));
+  EXPECT_EQ(sorted(pairs), (std::vector<BodyPair>{{2, 3}}));
+}
+
 // Every pair of boxes that meet, by looking at all n(n-1)/2 of them: the oracle of
 // the test support's sweep, sharing no code with it nor with the core.
 std::vector<testing::IndexPair> all_meeting_pairs(const std::vector<Aabb>& boxes) {

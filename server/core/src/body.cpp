@@ -23,7 +23,7 @@ std::string_view describe(BodyDefError error) {
     case BodyDefError::BadFriction:
       return "friction must be finite numbers >= 0";
     case BodyDefError::OutOfBounds:
-      return "the body lies outside the world's bounds";
+      return "the body lies outside the world's bounds (or beyond |coordinate| 1e7)";
     case BodyDefError::TooLarge:
       return "the body is larger than the world's size limit";
     case BodyDefError::TooManyBodies:

@@ -18,6 +18,12 @@ constexpr double kLargeInMedians = 4.0;
 // of empty cells.
 constexpr double kCellsPerBox = 2.0;
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Centres farther than this from the origin are not filed in cells (see build); the
+// core refuses positions beyond kMaxCoordinate = 1e7, so only a body that drifted
+// there, a hundred times the limit, ever lands in the large list this way.
+constexpr double kFarCentre = 1.0e9;
+// Passes of the cell-growing loop: from 1e-9 by 1.25 a pass reaches 2e9 within 200.
+constexpr int kMaxGrowPasses = 256;
 
 // boxes_intersect without its short-circuit: all four tests, no branch. The pair
 // loops below test boxes that overlap about half the time, a branch the hardware
@@ -84,28 +90,34 @@ void UniformGrid::build(std::span<const Aabb> boxes) {
   const double large_above = std::max(kLargeInMedians * median, 1.0e-9);
 
   // The cell is as large as the largest ordinary box, so overlapping boxes have
-  // their centres in the same or adjacent cells.
+  // their centres in the same or adjacent cells. A box whose centre lies beyond
+  // kFarCentre is kept with the large ones (tested against everything): the spread
+  // of the filed centres then stays a finite number, whatever the world was given.
   Vec2 lo{kInf, kInf};
   Vec2 hi{-kInf, -kInf};
   double cell = 1.0e-9;
   for (std::uint32_t i = 0; i < n; ++i) {
     const Aabb& b = boxes_[i];
     const double extent = finite_box(b) ? extent_of(b) : kInf;
-    if (extent > large_above) {
+    const Vec2 c = center_of(b);
+    if (extent > large_above || !(std::fabs(c.x) <= kFarCentre && std::fabs(c.y) <= kFarCentre)) {
       large_.push_back(i);
       continue;
     }
     cell = std::max(cell, extent);
-    const Vec2 c = center_of(b);
     lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
     hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
   }
   if (large_.size() == n) return;
   reach_ = 0.5 * cell;
 
-  // Grow the cells until the grid has no more than kCellsPerBox cells per box.
+  // Grow the cells until the grid has no more than kCellsPerBox cells per box. The
+  // cell grows by 1.25 at least each pass, so the spread (at most 2 * kFarCentre)
+  // is covered within a bounded number of passes; past kMaxGrowPasses (never reached
+  // with finite centres) the grid is one cell, which tests every filed pair.
   const double budget = std::max(64.0, kCellsPerBox * static_cast<double>(n));
-  for (;;) {
+  columns_ = rows_ = 1;
+  for (int pass = 0; pass < kMaxGrowPasses; ++pass) {
     const double cols = std::floor((hi.x - lo.x) / cell) + 1.0;
     const double rows = std::floor((hi.y - lo.y) / cell) + 1.0;
     if (cols * rows <= budget) {

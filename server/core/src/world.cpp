@@ -11,6 +11,17 @@
 namespace phys {
 
 namespace {
+// Every world's outermost bounds, with or without settings.bounds: positions beyond
+// this distance from the origin on either axis are refused by add_body (OutOfBounds)
+// and set_position, as the scene format refuses them (scene::kMaxCoordinate). Far
+// out a double still resolves about 2e-9 m, and the spread of any two bodies stays a
+// finite number (the broadphase's grid needs it).
+constexpr double kMaxCoordinate = 1.0e7;
+// False for NaN too.
+bool within_coordinate_limit(Vec2 p) {
+  return std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate;
+}
+
 // v scaled down to `limit` if longer (vec2.h), counting each time it had to be.
 Vec2 clamp_counted(Vec2 v, double limit, std::uint64_t& clamps) {
   bool clamped = false;
@@ -28,6 +39,7 @@ WorldImpl::WorldImpl(const WorldSettings& s) : settings(s) {
 
 BodyDefError WorldImpl::check(const BodyDef& def) const {
   if (!is_finite(def.position)) return BodyDefError::NonFinitePosition;
+  if (!within_coordinate_limit(def.position)) return BodyDefError::OutOfBounds;
   if (!is_finite(def.velocity)) return BodyDefError::NonFiniteVelocity;
   if (!is_finite(def.acceleration)) return BodyDefError::NonFiniteAcceleration;
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
@@ -210,7 +222,7 @@ bool World::set_acceleration(BodyId id, Vec2 acceleration) {
 
 bool World::set_position(BodyId id, Vec2 position) {
   Body* b = impl_->find(id);
-  if (!b || !is_finite(position)) return false;
+  if (!b || !within_coordinate_limit(position)) return false;
   b->position = position;
   b->still_time = 0.0;
   impl_->wake(id.index);

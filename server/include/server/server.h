@@ -17,6 +17,39 @@
 
 namespace server {
 
+// What the operations endpoint (/healthz, /readyz, /metrics) lets a stranger hold:
+// docs/SERVER.md, "What a stranger can cost us".
+struct OpsHttpLimits {
+  // Connections open at once, in all and from one address. A new one over either
+  // cap closes the oldest still reading its request (of that address, if it is the
+  // address's cap), so a probe always gets in.
+  int max_connections = 32;
+  int max_connections_per_address = 4;
+  // From accept to the end of the request's headers, whatever trickles in meanwhile;
+  // then the connection is closed (408).
+  std::chrono::milliseconds request_deadline{2000};
+  // Request line and headers; over it: 431, then closed. Nothing more is ever held.
+  std::size_t max_header_bytes = 8192;
+  // Requests (one per connection) an address may make: this many a second, in
+  // bursts of request_burst; over it: 429 at once, nothing read.
+  double requests_per_second = 20.0;
+  double request_burst = 40.0;
+};
+
+// What the operations endpoint holds and has refused (ServerStats::ops_http).
+struct OpsHttpStats {
+  std::size_t open_connections = 0;
+  std::size_t peak_open_connections = 0;
+  std::size_t held_header_bytes = 0;  // request bytes held now, all connections
+  std::size_t peak_held_header_bytes = 0;
+  std::uint64_t requests_answered = 0;  // any status, 429 and 431 included
+  std::uint64_t evicted = 0;            // closed to make room for a newer connection
+  std::uint64_t deadline_expired = 0;   // request not complete within request_deadline
+  std::uint64_t header_too_large = 0;   // answered 431
+  std::uint64_t malformed = 0;          // answered 400
+  std::uint64_t rate_limited = 0;       // answered 429
+};
+
 struct ServerConfig {
   std::string bind = "127.0.0.1";
   // 0 picks a free port; port() tells which.
@@ -43,8 +76,12 @@ struct ServerConfig {
   // timeout is dropped (ERROR_LOCKSTEP_STRAGGLER); 0 never drops.
   int lockstep_max_timeouts = 8;
   // Serve /healthz, /readyz and /metrics over HTTP on this port (0: a free one,
-  // see Server::metrics_port()); unset: no HTTP endpoint.
+  // see Server::metrics_port()); unset: no HTTP endpoint. On metrics_bind, a
+  // loopback address unless told otherwise: a scraper or an orchestrator's probe on
+  // the same host, never the internet.
   std::optional<std::uint16_t> metrics_port;
+  std::string metrics_bind = "127.0.0.1";
+  OpsHttpLimits metrics_limits;
   // Log one line of statistics this often; 0: never.
   std::chrono::milliseconds stats_log_interval{0};
   // Speak the Agones SDK's local REST API at 127.0.0.1:this port (physics-server
@@ -56,6 +93,17 @@ struct ServerConfig {
   // on Agones, tell it to shut this game server down).
   bool shutdown_after_match = false;
   int max_clients = 64;
+  // Players (not spectators) joined at once from one address; the next one is
+  // refused ERROR_SERVER_FULL. 8 lets a household or a LAN party behind one NAT
+  // address in, while holding every seat of the default 64 takes 8 addresses (and the
+  // per-address pending and connect limits apply to each). 0: no cap (a tournament
+  // behind one address with --token, say).
+  int max_players_per_address = 8;
+  // A player dropped for straggling in lockstep or for not reading may not take a
+  // seat again from its address for seat_backoff, doubled at each further such drop
+  // from that address (up to hello_backoff_max); meanwhile its Hellos are refused
+  // ERROR_RATE_LIMITED. A quiet hello_backoff_max forgives the drops.
+  std::chrono::milliseconds seat_backoff{2000};
   // Spectators (Hello.spectate) watch without a body and are counted apart from the
   // players: at most this many at once.
   int max_spectators = 16;
@@ -72,6 +120,10 @@ struct ServerConfig {
   std::chrono::milliseconds handshake_timeout{2000};
   // Connections that have not joined yet: at most this many at once, and at most
   // max_pending_per_address from one address. They never count against max_clients.
+  // When the pool is full, a new connection takes the place of the oldest one that
+  // has sent nothing yet (as a web server drops idle keep-alives first), so silent
+  // sockets never keep a would-be player out; only when every pending one has sent
+  // bytes is the newcomer refused.
   int max_pending = 64;
   int max_pending_per_address = 8;
   // Per address: after failed_hellos_before_backoff failed Hellos in a row (bad
@@ -94,13 +146,21 @@ struct ServerConfig {
   double peer_byte_burst = 1u << 20;
   double peer_messages_per_second = 8192;
   double peer_message_burst = 8192;
+  // Full states (the join's and those a client requests) are counted against a
+  // budget per client: this many bytes a second, in bursts of twice that. A
+  // FullStateRequest while the client is over its budget is answered
+  // ERROR_RATE_LIMITED (not fatal) and dropped; the join's full state is always sent.
+  // 64 KiB a second is two full states of a 1,000-body world (about 28 KB each).
+  double full_state_bytes_per_second = 64 * 1024;
   // The largest window (snapshots sent and not yet acknowledged) a client may ask
   // for in Hello.view; the default window is min(12, this). A client whose window
   // is full skips ticks, so no client ever holds more than this many snapshots in
   // the server's queue and the kernel's buffers together.
   std::uint32_t max_snapshot_window = 64;
   // A client is dropped when nothing arrives from it for this long (clients that
-  // send no inputs send Ping), or when a write to it makes no progress this long.
+  // send no inputs send Ping), when a write to it makes no progress this long, or,
+  // once joined, when it has acknowledged none of the snapshots sent to it for this
+  // long (whatever else it sends): a client must read to keep its place.
   std::chrono::milliseconds idle_timeout{10000};
   // An Input for a tick beyond current_tick + max_ticks_ahead is refused.
   std::uint64_t max_ticks_ahead = 120;
@@ -150,6 +210,9 @@ enum class DropReason : std::uint8_t {
   SeatOutOfRange,     // Hello.seat not below the number of seats
   LockstepStraggler,  // missed lockstep_max_timeouts timed-out ticks in a row
   InvalidSubscription,  // Hello.contacts not allowed as given
+  AddressFull,          // max_players_per_address players already joined from its address
+  SeatBackoff,          // its address may not take a seat yet (seat_backoff after a drop)
+  NotReading,           // joined, and acknowledged no snapshot for idle_timeout
 };
 const char* to_string(DropReason reason);
 
@@ -180,11 +243,13 @@ struct ServerStats {
   std::uint64_t view_updates = 0;      // encodings made: one per view per due tick
   std::size_t views = 0;               // views now (clients with equal views share one)
   std::uint64_t invalid_acks = 0;
-  std::uint64_t rate_limited = 0;  // full-state requests while one was pending
+  std::uint64_t rate_limited = 0;  // full-state requests while one was pending or over budget
   // Times a connection's reading was paused for being over its byte or message rate.
   std::uint64_t throttled_reads = 0;
   std::uint64_t failed_hellos = 0;         // Hellos refused (counted per address too)
   std::uint64_t suppressed_log_lines = 0;  // per-cause log limit: lines not written
+  // Pending connections that had sent nothing, closed to make room for a newer one.
+  std::uint64_t evicted_pending = 0;
   // Bytes the players' pending inputs hold now (ClientInputs::memory_bytes, summed).
   std::size_t input_buffer_bytes = 0;
   // The worst position error of any client's reconstruction against the world, over
@@ -213,6 +278,8 @@ struct ServerStats {
   std::string tick_failure;
   // When the last tick stepped (steady clock); for readiness.
   std::chrono::steady_clock::time_point last_tick_at{};
+  // The operations endpoint's own counters (zero without config.metrics_port).
+  OpsHttpStats ops_http;
 
   std::uint64_t dropped_total() const;
   // Sessions that ended for any reason but a Bye or the server's own shutdown.
