@@ -1,9 +1,20 @@
 #!/usr/bin/env bash
 # Installs what the project needs from Debian 12's packages, and nothing else.
 # Safe to run again: it installs only what is missing.
+#   scripts/install-deps.sh           what the build, the tests and the bench need
+#   scripts/install-deps.sh aarch64   the AArch64 cross build and its emulator
+#                                     (scripts/test-aarch64.sh)
+#   scripts/install-deps.sh wasm      emscripten and node (scripts/test-wasm.sh)
 set -euo pipefail
 
-packages=(
+case "${1:-}" in
+  aarch64) packages=(g++-aarch64-linux-gnu qemu-user) ;;
+  # node: Debian's nodejs where no node is installed yet.
+  wasm)
+    packages=(emscripten)
+    command -v node >/dev/null || packages+=(nodejs)
+    ;;
+  "") packages=(
   build-essential cmake ninja-build pkg-config
   libasio-dev libprotobuf-dev protobuf-compiler
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -19,7 +30,9 @@ packages=(
   # physics-view: drawing (SDL2), its panel's font and PNG screenshots (stb); its
   # window's test runs under a virtual X server (xvfb).
   libsdl2-dev libstb-dev xvfb
-)
+) ;;
+  *) echo "usage: scripts/install-deps.sh [aarch64|wasm]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -9,51 +9,16 @@
 #include <vector>
 
 #include "physics_test_support.h"
+#include "scenes/determinism_scene.h"
 
 namespace phys::testing {
 namespace {
 
-// A room with a floor and two walls, a staircase of static boxes, and 40 dynamic
-// bodies of both shapes, mixed masses, restitutions and frictions, launched in
-// different directions. Body 0 is steered by an input that changes over time.
-std::vector<BodyId> build_scene(World& world) {
-  std::vector<BodyId> dynamic;
-  add_or_fail(world, box_def({0.0, -0.5}, {20.0, 0.5}, Motion::Static));
-  add_or_fail(world, box_def({-20.5, 10.0}, {0.5, 10.0}, Motion::Static));
-  add_or_fail(world, box_def({20.5, 10.0}, {0.5, 10.0}, Motion::Static));
-  for (int i = 0; i < 4; ++i) {
-    add_or_fail(world,
-                box_def({-10.0 + 2.0 * i, 0.25 + 0.5 * i}, {1.0, 0.25 + 0.5 * i}, Motion::Static));
-  }
-  add_or_fail(world, circle_def({8.0, 3.0}, 1.0, Motion::Static));
-  for (int i = 0; i < 40; ++i) {
-    const double x = -15.0 + 0.75 * i;
-    const double y = 4.0 + 1.5 * (i % 5);
-    BodyDef def = (i % 3 == 0) ? circle_def({x, y}, 0.3 + 0.05 * (i % 4))
-                               : box_def({x, y}, {0.3 + 0.04 * (i % 5), 0.25 + 0.03 * (i % 3)});
-    def.mass = 0.5 + 0.25 * (i % 7);
-    def.restitution = 0.1 * (i % 6);
-    def.friction = {0.2 * (i % 4), 0.0};
-    // Integer patterns, not sin/cos: the scene itself must not depend on libm.
-    def.velocity = {1.25 * ((i * 7) % 11 - 5), 1.0 * ((i * 5) % 9 - 4)};
-    dynamic.push_back(add_or_fail(world, def));
-  }
-  return dynamic;
-}
-
-// The input script: body 0 is pushed left and right, and one body is removed and
-// another added half way, so that id reuse is part of what must repeat.
+// The scene and its inputs: scenes/determinism_scene.h (also run by physics-hashes
+// on every platform CI checks).
+std::vector<BodyId> build_scene(World& world) { return scenes::add_determinism_scene(world); }
 void apply_inputs(World& world, const std::vector<BodyId>& dynamic, int step) {
-  if (step % 50 == 0) {
-    const double direction = (step / 50) % 2 == 0 ? 1.0 : -1.0;
-    world.set_acceleration(dynamic[0], {8.0 * direction, 0.0});
-  }
-  if (step == 500) {
-    world.remove_body(dynamic[7]);
-    BodyDef def = circle_def({0.0, 15.0}, 0.4);
-    def.restitution = 0.6;
-    add_or_fail(world, def);
-  }
+  scenes::apply_determinism_inputs(world, dynamic, step);
 }
 
 TEST(Determinism, TwoWorldsBuiltAlikeAgreeOnEveryStep) {

@@ -28,7 +28,7 @@ class FrictionAtDtTimesK : public ::testing::TestWithParam<DecayCase> {
 };
 
 // e^-x as 1 / (sum of x^n/n!): the series has no cancellation for x >= 0, and
-// uses no exp, so it checks the core's std::exp independently.
+// uses no exp, so it checks the core's det::exp independently.
 double exp_minus_by_series(double x) {
   double term = 1.0;
   double sum = 1.0;
@@ -43,8 +43,8 @@ double exp_minus_by_series(double x) {
 // relative difference of about dt*k ulps, hence the relative bound 1e-13.
 constexpr double kRounding = 1.0e-13;
 
-// The core computes exp(-k*dt); std::exp here restates it, so the hand value and
-// the series stand beside it as the independent checks.
+// The core computes exp(-k*dt) with det::exp; the C library's std::exp restates it,
+// and the hand value and the series stand beside it as the independent checks.
 TEST_P(FrictionAtDtTimesK, DecayFactorIsExpOfMinusKDt) {
   const double factor = friction_decay_factor(rate(), kDt);
   const double hand = GetParam().decay;

@@ -110,7 +110,7 @@ std::vector<Expected> build_expected_scenes() {
       {"stages_circles_only", scenes::stages_scene(StageVariant::CirclesOnly, 1), 4004,
        0x93c8478e124a05d3, 30, 0x0cd53957e2f06cc4},
       {"stages_boxes_only", scenes::stages_scene(StageVariant::BoxesOnly, 1), 4004,
-       0x9cef137dcebda963, 30, 0x630fe3e4de31c904},
+       0x9cef137dcebda963, 30, 0x1ba8ca4b7065e9b3},
   };
 }
 

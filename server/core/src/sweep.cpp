@@ -71,7 +71,7 @@ std::optional<double> AxisPath::reaches(double level) const {
       turn = -v0 / a;
     } else {
       const double ratio = a / (a - k * v0);  // e^(-k t) at the turning point
-      turn = (ratio > 0.0 && ratio < 1.0) ? -std::log(ratio) / k : h;
+      turn = (ratio > 0.0 && ratio < 1.0) ? -det::log(ratio) / k : h;
     }
     if (!(turn > 0.0 && turn < h)) turn = h;
   }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "physics/det_math.h"
 #include "physics/settings.h"
 #include "physics/vec2.h"
 
@@ -18,8 +19,9 @@ constexpr double lerp(double v0, double v1, double t) { return (1.0 - t) * v0 + 
 // The recipe's velocity decay, v = lerp(v, 0, dt*k), overshoots once dt*k > 1 and
 // diverges past 2. It is the first-order step of dv/dt = -k*v, whose exact
 // solution over dt is v*exp(-k*dt): the same meaning (decay toward zero at rate k),
-// stable for every dt*k >= 0, never changing sign and never growing.
-inline double friction_decay_factor(double rate, double dt) { return std::exp(-rate * dt); }
+// stable for every dt*k >= 0, never changing sign and never growing. exp, expm1 and
+// log in the step are det::'s (physics/det_math.h), which round alike on every platform.
+inline double friction_decay_factor(double rate, double dt) { return det::exp(-rate * dt); }
 inline double apply_friction(double velocity, double rate, double dt) {
   return velocity * friction_decay_factor(rate, dt);
 }
@@ -45,11 +47,11 @@ inline Phi phi(double k, double t) {
   if (k == 0.0) return {1.0, t, 0.5 * t * t};
   const double kt = k * t;
   if (kt < 1.0e-3) {
-    return {std::exp(-kt), t * (1.0 - kt / 2.0 + kt * kt / 6.0 - kt * kt * kt / 24.0),
+    return {det::exp(-kt), t * (1.0 - kt / 2.0 + kt * kt / 6.0 - kt * kt * kt / 24.0),
             t * t * (0.5 - kt / 6.0 + kt * kt / 24.0 - kt * kt * kt / 120.0)};
   }
-  const double decay = std::exp(-kt);
-  const double p1 = -std::expm1(-kt) / k;
+  const double decay = det::exp(-kt);
+  const double p1 = -det::expm1(-kt) / k;
   return {decay, p1, (t - p1) / k};
 }
 }  // namespace detail
