@@ -32,3 +32,8 @@ run default-settled 3 --still --settle 6 --scenes default
 run pyramid-asleep 10 --still --settle 6 --scenes scenes/box-pyramid.textproto
 # Players driving their bodies every tick: input-to-snapshot latency.
 run default-driving 0 --scenes default
+# One player driving in a still world (the pyramid asleep after 10 s): what a
+# snapshot's header and the player's own record cost, its join included.
+echo "## pyramid-one-driver"
+"$netbench" --bots 1 --duration "$duration" --warmup 10 --encodings predicted \
+  --csv "$out/netbench-pyramid-one-driver.csv" --scenes scenes/box-pyramid.textproto 2>/dev/null

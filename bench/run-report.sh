@@ -20,7 +20,7 @@ results="$here/results"
 # The runs, in the order they run, and the files each writes into bench/results/.
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
-      replay-size contact-events soak core-comparison)
+      still-world replay-size contact-events soak core-comparison)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -42,12 +42,14 @@ declare -A writes=(
     accuracy-pile-rain-box2d-mu0.2-timeline-seconds.csv"
   [micro]="benchmarks-micro.json"
   [net-paths]="netbench-paths.csv netbench-paths-default-jitter.csv"
+  [still-world]="still-world-one-driver.csv"
   [replay-size]="replay-size.csv"
   [contact-events]="contact-events.csv"
   [soak]="soak-moving-1000.csv"
   [core-comparison]="core-comparison.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
-  [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')"
+  [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
+    netbench-pyramid-one-driver.csv"
 )
 
 all_outputs() { for r in "${runs[@]}"; do for f in ${writes[$r]}; do echo "$f"; done; done; }
@@ -190,6 +192,7 @@ run_net-paths() {  # lockstep and fixed rate through the link conditioner (about
     --one-way-ms 50 --jitter-ms 10 --stall-ms 0 --duration 20 \
     --csv "$out/netbench-paths-default-jitter.csv"
 }
+run_still-world() { BUILD_DIR="$build" "$here/run-still-world.sh"; }
 run_replay-size() {  # server recordings of 8 clients at 60 Hz, 10 minutes each (seconds)
   local size="$build/tests/replay/physics-replay-size"
   [[ -x "$size" ]] || { echo "run-report: $size not built (ninja -C $build physics-replay-size)" >&2; return 1; }
