@@ -36,6 +36,8 @@ class PositionPass : StepPhase {
   void relaxed_circle_passes();
   bool resolve_circle_pair(const Candidate& cand, Body& a, Body& b, Vec2 n, double depth,
                            bool corner);
+  bool collide_circle_pair(const Candidate& cand, Body& a, Body& b, double grown,
+                           std::uint64_t& circle_tests, std::uint64_t& mixed_tests);
   double near_gap(const Body& a, const Body& b) const;
   bool near(const Body& a, const Body& b) const;
   template <typename Resolve>
@@ -203,17 +205,23 @@ void PositionPass::collide_with_circles() {
   }
   std::uint64_t circle_tests = 0;
   std::uint64_t mixed_tests = 0;
-  const double margin = near_miss_margin();
-  const double grown = margin + c_.speculative_margin;
+  const double grown = near_miss_margin() + c_.speculative_margin;
   resolve_passes([&](const Candidate& cand, Body& a, Body& b) __attribute__((always_inline)) {
-    Contact contact;
-    bool corner = false;
-    if (!collide_grown(a, b, grown, contact, corner, circle_tests, mixed_tests)) return false;
-    if (!contact.colliding) return false;
-    return resolve_circle_pair(cand, a, b, contact.normal, contact.penetration - grown, corner);
+    return collide_circle_pair(cand, a, b, grown, circle_tests, mixed_tests);
   });
   w_.counters.circle_circle_tests += circle_tests;
   w_.counters.circle_box_tests += mixed_tests;
+}
+
+// The narrowphase and resolution of a pair with a circle; false for a box pair.
+__attribute__((always_inline)) inline bool PositionPass::collide_circle_pair(
+    const Candidate& cand, Body& a, Body& b, double grown, std::uint64_t& circle_tests,
+    std::uint64_t& mixed_tests) {
+  Contact contact;
+  bool corner = false;
+  if (!collide_grown(a, b, grown, contact, corner, circle_tests, mixed_tests)) return false;
+  if (!contact.colliding) return false;
+  return resolve_circle_pair(cand, a, b, contact.normal, contact.penetration - grown, corner);
 }
 
 // Shapes are tested grown by the near-miss margin: a pair a hair apart (as the
@@ -284,13 +292,8 @@ void PositionPass::relaxed_circle_passes() {
   };
   auto full = [&](std::uint32_t c) __attribute__((always_inline)) {
     const Candidate& cand = cands[c];
-    Body& a = bodies[cand.lower];
-    Body& b = bodies[cand.upper];
-    Contact contact;
-    bool corner = false;
-    if (!collide_grown(a, b, grown, contact, corner, circle_tests, mixed_tests)) return false;
-    if (!contact.colliding) return false;
-    return resolve_circle_pair(cand, a, b, contact.normal, contact.penetration - grown, corner);
+    return collide_circle_pair(cand, bodies[cand.lower], bodies[cand.upper], grown, circle_tests,
+                               mixed_tests);
   };
   for (int iteration = 0; iteration < s_.position_iterations; ++iteration) {
     x_.supported.assign(w_.lists.active.size(), 0);
