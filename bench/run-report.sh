@@ -20,7 +20,8 @@ results="$here/results"
 # The runs, in the order they run, and the files each writes into bench/results/.
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
-      still-world replay-size contact-events soak core-comparison)
+      still-world replay-size contact-events soak core-comparison core-comparison-relaxed
+      rain-position-passes)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -47,6 +48,8 @@ declare -A writes=(
   [contact-events]="contact-events.csv"
   [soak]="soak-moving-1000.csv"
   [core-comparison]="core-comparison.csv"
+  [core-comparison-relaxed]="core-comparison-relaxed.csv"
+  [rain-position-passes]="accuracy-rain-position-passes.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
     netbench-pyramid-one-driver.csv"
@@ -206,6 +209,16 @@ run_contact-events() {  # the step with contact events off and on: a rain, a pil
 }
 run_core-comparison() {  # this tree's core against CORE_BASELINE's (default HEAD), in turns
   OUT="$out/core-comparison.csv" "$here/compare-core.sh" "${CORE_BASELINE:-HEAD}"
+}
+run_core-comparison-relaxed() {  # the relaxed position passes against CORE_BASELINE's core
+  RAIN_COUNTS="1000 4000" SCENES="rain-16000,pyramid-5050,column-50" \
+    BENCH_FLAGS=--relaxed-position-passes RESULTS_MAY_DIFFER=1 \
+    OUT="$out/core-comparison-relaxed.csv" "$here/compare-core.sh" "${CORE_BASELINE:-HEAD}"
+}
+run_rain-position-passes() {  # what the position passes after the first cost, rain-4000 awake
+  "$bench" --quick --scenes rain --rain-count 4000 --engines ours --integrators exact \
+    --substeps 1 --iterations 1,2,4 --full-grid --sleep off --interleave 60 \
+    --csv "$out/accuracy-rain-position-passes.csv"
 }
 run_soak() {  # 64 churning clients on moving-1000 for 10 minutes, replayed (physics-soak)
   local soak="$build/tests/soak/physics-soak"

@@ -116,6 +116,9 @@ int main(int argc, char** argv) {
                "Run the whole settings grid on the large scenes too (slow)");
   app.add_flag("--peers-everywhere", grid.peers_on_all_scenes,
                "Run the peers on every scene, not only rain and pyramid");
+  app.add_flag("--relaxed-position-passes", grid.relaxed_position_passes,
+               "Ours: later position passes update pairs linearly (WorldSettings::"
+               "relaxed_position_passes)");
   app.add_option("--csv", csv_path, "Write the CSV here instead of stdout");
   app.add_option("--ratios", ratios_path, "Write peer/ours time ratios (CSV) here");
   app.add_option("--timeline", timeline_path,

@@ -77,6 +77,7 @@ RunInProgress::RunInProgress(const SceneEntry& entry, const SceneSpec& scene,
   options.ours.substeps = setting.substeps;
   options.ours.position_iterations = setting.iterations;
   options.ours.velocity_iterations = setting.velocity_iterations;
+  options.ours.relaxed_position_passes = setting.relaxed_position_passes;
   options.ours.profile = true;
   options.sleeping = sleeping;
   engine_ = make_engine(engine_kind, scene, options);
@@ -200,13 +201,14 @@ void run_grid(const std::vector<SceneEntry>& scenes, const Mode& mode, const Gri
     std::vector<OursSetting> settings;
     if (entry.large && !config.full_grid_on_large) {
       settings.push_back({defaults.integrator, defaults.substeps, defaults.position_iterations,
-                          defaults.velocity_iterations});
+                          defaults.velocity_iterations, config.relaxed_position_passes});
     } else {
       for (phys::Integrator integrator : config.integrators) {
         for (int substeps : config.substeps) {
           for (int iterations : config.iterations) {
             for (int velocity_iterations : config.velocity_iterations)
-              settings.push_back({integrator, substeps, iterations, velocity_iterations});
+              settings.push_back({integrator, substeps, iterations, velocity_iterations,
+                                  config.relaxed_position_passes});
           }
         }
       }

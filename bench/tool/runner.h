@@ -18,6 +18,7 @@ struct OursSetting {
   int substeps = 1;
   int iterations = phys::WorldSettings{}.position_iterations;
   int velocity_iterations = phys::WorldSettings{}.velocity_iterations;
+  bool relaxed_position_passes = phys::WorldSettings{}.relaxed_position_passes;
 };
 
 struct RunRow {
@@ -57,6 +58,8 @@ struct GridConfig {
   std::vector<bool> sleep_modes;
   bool full_grid_on_large = false;
   bool peers_on_all_scenes = false;
+  // Ours: WorldSettings::relaxed_position_passes for every run.
+  bool relaxed_position_passes = phys::WorldSettings{}.relaxed_position_passes;
   int timeline_steps = 60;  // steps per window of RunRow::timeline
   // 0: each run after the other. N: the runs of a scene take turns of N steps.
   int interleave_steps = 0;

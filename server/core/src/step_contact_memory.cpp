@@ -85,9 +85,12 @@ void remember_impulses(WorldImpl& w, std::span<const ContactRecord> contacts) {
     std::uint8_t count = 0;
     for (; i < contacts.size() && contacts[i].lower_pos == p; ++i) {
       const ContactRecord& k = contacts[i];
-      if (!(k.impulse <= 0.0) && count < kWarmSlots) {
+      if (k.impulse <= 0.0) continue;
+      if (count < kWarmSlots) {
         pool.push_back({k.upper, k.upper_generation, k.impulse, k.tangent_impulse});
         ++count;
+      } else {
+        ++w.counters.warm_start_overflows;
       }
     }
     w.warm_first[slot] = first;

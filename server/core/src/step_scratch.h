@@ -58,6 +58,17 @@ struct StepScratch {
   // Written and read by the position passes (step_position.cpp) alone.
   struct Position {
     std::vector<std::uint32_t> near_candidates;  // candidates worth another pass
+    // A pair with a circle that touched (within the grown margin) in the first pass:
+    // its normal, and `base`, its penetration then plus the normal's share of the
+    // bodies' offset then, so that later passes find the penetration as
+    // base - dot(normal, upper.position - lower.position).
+    struct RelaxedPair {
+      Vec2 normal;
+      double base;
+      std::uint32_t candidate;
+      std::uint32_t corner;  // a circle beside a box's corner: no speculative margin
+    };
+    std::vector<RelaxedPair> relaxed;
   } position;
 
   // Written by the velocity solver (step_velocity.cpp); `contacts` is read after it

@@ -16,11 +16,17 @@ struct StageCounters {
   std::uint64_t box_box_tests = 0;      // narrowphase box-box tests
   std::uint64_t circle_circle_tests = 0;
   std::uint64_t circle_box_tests = 0;
+  // Pairs the position passes after the second updated from the bodies' moves
+  // (WorldSettings::relaxed_position_passes) instead of the narrowphase.
+  std::uint64_t relaxed_pair_updates = 0;
   std::uint64_t contacts = 0;           // overlapping pairs resolved
   std::uint64_t swept_hits = 0;         // time-of-impact stops against static bodies
   std::uint64_t friction_holds = 0;     // contacts held in place by static friction
   std::uint64_t broadphase_reuses = 0;  // sub-steps that reused the last candidate pairs
   std::uint64_t velocity_solves = 0;    // sub-steps whose velocity solver had contacts
+  // Contacts with an impulse left out of warm starting: their lower body's
+  // warm-start slots (kWarmSlots) were full.
+  std::uint64_t warm_start_overflows = 0;
   std::uint64_t sleeping_bodies_skipped = 0;
   std::uint64_t wakes = 0;         // sleeping bodies woken by a hit
   std::uint64_t speed_clamps = 0;  // velocities clamped to max_speed
