@@ -20,7 +20,7 @@ results="$here/results"
 # The runs, in the order they run, and the files each writes into bench/results/.
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench replay-size
-      contact-events soak core-comparison)
+      contact-events soak core-comparison det-math-comparison wasm-speed)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -45,6 +45,8 @@ declare -A writes=(
   [contact-events]="contact-events.csv"
   [soak]="soak-moving-1000.csv"
   [core-comparison]="core-comparison.csv"
+  [det-math-comparison]="core-comparison-det-math.csv"
+  [wasm-speed]="wasm-speed.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')"
 )
@@ -194,6 +196,12 @@ run_contact-events() {  # the step with contact events off and on: a rain, a pil
 }
 run_core-comparison() {  # this tree's core against CORE_BASELINE's (default HEAD), in turns
   OUT="$out/core-comparison.csv" "$here/compare-core.sh" "${CORE_BASELINE:-HEAD}"
+}
+run_det-math-comparison() {  # the core with its own exp/expm1/log against the one with libm's
+  OUT="$out/core-comparison-det-math.csv" "$here/compare-core.sh" "${DET_MATH_BASELINE:-0da0b44}"
+}
+run_wasm-speed() {  # the WebAssembly core's step time against native (needs build-wasm/)
+  OUT="$out/wasm-speed.csv" "$here/wasm-speed.sh"
 }
 run_soak() {  # 64 churning clients on moving-1000 for 10 minutes, replayed (physics-soak)
   local soak="$build/tests/soak/physics-soak"
