@@ -21,7 +21,7 @@ results="$here/results"
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
-      rain-position-passes)
+      rain-position-passes det-math-comparison wasm-speed)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -50,6 +50,8 @@ declare -A writes=(
   [core-comparison]="core-comparison.csv"
   [core-comparison-relaxed]="core-comparison-relaxed.csv"
   [rain-position-passes]="accuracy-rain-position-passes.csv"
+  [det-math-comparison]="core-comparison-det-math.csv"
+  [wasm-speed]="wasm-speed.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
     netbench-pyramid-one-driver.csv"
@@ -219,6 +221,12 @@ run_rain-position-passes() {  # what the position passes after the first cost, r
   "$bench" --quick --scenes rain --rain-count 4000 --engines ours --integrators exact \
     --substeps 1 --iterations 1,2,4 --full-grid --sleep off --interleave 60 \
     --csv "$out/accuracy-rain-position-passes.csv"
+}
+run_det-math-comparison() {  # the core with its own exp/expm1/log against the one with libm's
+  OUT="$out/core-comparison-det-math.csv" "$here/compare-core.sh" "${DET_MATH_BASELINE:-0da0b44}"
+}
+run_wasm-speed() {  # the WebAssembly core's step time against native (needs build-wasm/)
+  OUT="$out/wasm-speed.csv" "$here/wasm-speed.sh"
 }
 run_soak() {  # 64 churning clients on moving-1000 for 10 minutes, replayed (physics-soak)
   local soak="$build/tests/soak/physics-soak"
