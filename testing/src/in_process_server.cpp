@@ -15,6 +15,8 @@ server::ServerConfig test_server_config(bool lockstep) {
   // the per-address defences against strangers would refuse it.
   config.failed_hellos_before_backoff = 1000000;
   config.connects_per_second = 0.0;
+  // The server's info lines (every join and leave) would fill a test's output.
+  config.log_level = server::LogLevel::Warn;
   return config;
 }
 

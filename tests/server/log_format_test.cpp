@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "log_fields.h"
+#include "scene/scene.h"
+#include "server/server.h"
 #include <spdlog/spdlog.h>
 
 #include <memory>
@@ -90,6 +92,25 @@ TEST(LogLevel, SetLogLevelHoldsBackLessSevereLines) {
   EXPECT_NE(written.find("an error"), std::string::npos) << written;
   server::set_log_level(server::LogLevel::Off);
   EXPECT_EQ(spdlog::get_level(), spdlog::level::off);
+  spdlog::set_level(before);
+}
+
+// ServerConfig::log_level is applied when the server is made; unset, the level stays.
+TEST(LogLevel, TheServerConfigsLevelIsAppliedAndUnsetLeavesItAlone) {
+  const spdlog::level::level_enum before = spdlog::get_level();
+  server::ServerConfig config;
+  config.port = 0;
+  config.log_level = server::LogLevel::Error;
+  {
+    const server::Server quiet(config, scene::default_scene());
+    EXPECT_EQ(spdlog::get_level(), spdlog::level::err);
+  }
+  config.log_level.reset();
+  spdlog::set_level(spdlog::level::debug);
+  {
+    const server::Server untouched(config, scene::default_scene());
+    EXPECT_EQ(spdlog::get_level(), spdlog::level::debug);
+  }
   spdlog::set_level(before);
 }
 
