@@ -53,7 +53,8 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       return;
     case Kind::kBye:
       log_with(spdlog::level::info,
-               {.client = session.id(), .address = session.peer(),
+               {.client = session.id(),
+                .address = session.peer(),
                 .reason = to_string(DropReason::ClientBye)},
                "client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
       session.close_now(DropReason::ClientBye);

@@ -3,14 +3,14 @@
 #include "server/log_format.h"
 
 #include <gtest/gtest.h>
-
-#include "log_fields.h"
-#include "scene/scene.h"
-#include "server/server.h"
 #include <spdlog/spdlog.h>
 
 #include <memory>
 #include <string>
+
+#include "log_fields.h"
+#include "scene/scene.h"
+#include "server/server.h"
 
 namespace {
 
@@ -55,8 +55,11 @@ TEST(LogFormat, TextLineIsTheMessageAsItIs) {
 TEST(LogFormat, JsonLineCarriesTheLinesFields) {
   const std::string line = stderr_of(server::LogFormat::Json, [] {
     server::log_with(spdlog::level::info,
-                     {.client = 7, .address = "10.0.0.2:4100", .tick = 1200,
-                      .reason = "said \"bye\"", .bytes = 4096},
+                     {.client = 7,
+                      .address = "10.0.0.2:4100",
+                      .tick = 1200,
+                      .reason = "said \"bye\"",
+                      .bytes = 4096},
                      "client {} left", 7);
   });
   EXPECT_NE(line.find("\"message\":\"client 7 left\",\"client_id\":7,\"address\":\"10.0.0.2:"
@@ -68,8 +71,7 @@ TEST(LogFormat, JsonLineCarriesTheLinesFields) {
   });
   EXPECT_NE(some.find("\"message\":\"tick 5 overran\",\"tick\":5}\n"), std::string::npos) << some;
   // A line logged without fields, after one with them, has none.
-  const std::string none =
-      stderr_of(server::LogFormat::Json, [] { spdlog::info("no fields"); });
+  const std::string none = stderr_of(server::LogFormat::Json, [] { spdlog::info("no fields"); });
   EXPECT_NE(none.find("\"message\":\"no fields\"}\n"), std::string::npos) << none;
   const std::string text = stderr_of(server::LogFormat::Text, [] {
     server::log_with(spdlog::level::info, {.client = 7}, "client {} left", 7);
