@@ -9,7 +9,6 @@
 // Box2D take their geometric mean; each shape gets the square root of the body's,
 // so that every pair's coefficient is the same in all three engines.
 #include <chipmunk/chipmunk.h>
-
 #include <fcntl.h>
 #include <unistd.h>
 

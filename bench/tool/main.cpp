@@ -57,8 +57,7 @@ void say_where_peers_do_not_run(const std::vector<bench::SceneEntry>& scenes,
   }
   if (peers.empty() || alone.empty()) return;
   std::cerr << "physics-bench: " << peers << " run on their own scenes only (add "
-            << "--peers-everywhere to run them on every scene); ours alone on: " << alone
-            << '\n';
+            << "--peers-everywhere to run them on every scene); ours alone on: " << alone << '\n';
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ int run_single(const Options& options) {
       return kExitLost;
     }
     fmt::print("{}\n", client_app::format_snapshot(*snapshot, options.json,
-                                                    options.client.view.state_hash));
+                                                   options.client.view.state_hash));
     for (const client::ContactEvent& event : snapshot->contact_events) {
       fmt::print("{}\n", client_app::format_contact_event(event, options.json));
     }

@@ -38,8 +38,8 @@ std::string format_snapshot(const client::Snapshot& snapshot, bool json, bool wi
   }
   const std::string hash = with_hash ? fmt::format(" hash {:016x}", snapshot.state_hash) : "";
   return fmt::format("tick {} pos ({:.6f}, {:.6f}) vel ({:.6f}, {:.6f}){} ({} records, {} bytes)",
-                     snapshot.tick, own.position.x, own.position.y, own.velocity.x,
-                     own.velocity.y, hash, snapshot.records, snapshot.wire_bytes);
+                     snapshot.tick, own.position.x, own.position.y, own.velocity.x, own.velocity.y,
+                     hash, snapshot.records, snapshot.wire_bytes);
 }
 
 std::string format_contact_event(const client::ContactEvent& event, bool json) {

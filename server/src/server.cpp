@@ -111,10 +111,15 @@ SimulationOptions simulation_options(const ServerConfig& config) {
   return options;
 }
 
+// Before anything logs: the server's first lines already obey the config.
+void apply_log_level(const ServerConfig& config) {
+  if (config.log_level) set_log_level(*config.log_level);
+}
+
 }  // namespace
 
 Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
-    : config_((check_config(config), std::move(config))),
+    : config_((check_config(config), apply_log_level(config), std::move(config))),
       simulation_(std::move(scene), simulation_options(config_)),
       acceptor_(io_),
       tick_timer_(io_),

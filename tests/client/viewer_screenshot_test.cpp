@@ -258,6 +258,14 @@ TEST_F(ViewerScreenshot, DrawsEachBodyWhereTheSnapshotPutsIt) {
   EXPECT_EQ(picture.at(map.px(12.0), map.py(-5.0)), viewer::kBackground);
   EXPECT_EQ(picture.at(map.px(-12.0), map.py(2.0)), viewer::kBackground);
   EXPECT_EQ(picture.at(map.px(0.0), map.py(-7.0)), viewer::kBackground);
+  // The slab's top edge (y = -8.5, pixel row 410) is outlined: a box's outline is one
+  // pixel inside it, in kBoxOutline, and its fill starts just below.
+  const double top = map.py(-8.5);
+  const bool outlined = picture.at(map.px(0.0), top) == viewer::kBoxOutline ||
+                        picture.at(map.px(0.0), top + 1.0) == viewer::kBoxOutline;
+  EXPECT_TRUE(outlined) << "found " << describe(picture.at(map.px(0.0), top)) << " and "
+                        << describe(picture.at(map.px(0.0), top + 1.0));
+  EXPECT_EQ(picture.at(map.px(0.0), top + 3.0), viewer::kStatic);
 }
 
 TEST_F(ViewerScreenshot, TheFollowedBodyIsAtTheCentreInItsOwnColour) {

@@ -65,8 +65,8 @@ TEST(Tool, PrintsOneJsonLinePerSnapshot) {
 TEST(Tool, TextLinesShowTheHashOnlyWhenAskedFor) {
   RunningServer server(test_config(), scene::default_scene());
   for (const bool asked : {false, true}) {
-    const CommandRun run = run_command(
-        client_command(server, std::string("--ticks 3 --accel 1,0") + (asked ? " --state-hash" : "")));
+    const CommandRun run = run_command(client_command(
+        server, std::string("--ticks 3 --accel 1,0") + (asked ? " --state-hash" : "")));
     ASSERT_EQ(run.exit_code, 0);
     std::size_t snapshots = 0;
     for (const auto& line : run.lines) {

@@ -33,13 +33,12 @@ TEST(Overlap, ACircleInABoxAndTwoBoxesAreRefused) {
                                "bodies { circle { radius: 0.5 } position { x: 2.3 y: 0 } }\n"))
                 .field,
             "bodies[1].position");
-  const SceneError boxes =
-      refused(scene_with("bodies { box { half_extents { x: 1 y: 1 } } position { x: 3 y: 0 } }\n"
-                         "bodies { box { half_extents { x: 1 y: 1 } } position { x: 0 y: 0 } }\n"
-                         "bodies { box { half_extents { x: 1 y: 1 } } position { x: 4.9 y: 1.9 } }\n"));
+  const SceneError boxes = refused(
+      scene_with("bodies { box { half_extents { x: 1 y: 1 } } position { x: 3 y: 0 } }\n"
+                 "bodies { box { half_extents { x: 1 y: 1 } } position { x: 0 y: 0 } }\n"
+                 "bodies { box { half_extents { x: 1 y: 1 } } position { x: 4.9 y: 1.9 } }\n"));
   EXPECT_EQ(boxes.field, "bodies[2].position");
-  EXPECT_NE(boxes.message.find("overlaps bodies[0] by 0.1 m"), std::string::npos)
-      << boxes.message;
+  EXPECT_NE(boxes.message.find("overlaps bodies[0] by 0.1 m"), std::string::npos) << boxes.message;
 }
 
 TEST(Overlap, AStaticBodyOverlappingADynamicOneIsRefused) {

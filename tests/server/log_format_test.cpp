@@ -3,12 +3,14 @@
 #include "server/log_format.h"
 
 #include <gtest/gtest.h>
-
-#include "log_fields.h"
 #include <spdlog/spdlog.h>
 
 #include <memory>
 #include <string>
+
+#include "log_fields.h"
+#include "scene/scene.h"
+#include "server/server.h"
 
 namespace {
 
@@ -53,8 +55,11 @@ TEST(LogFormat, TextLineIsTheMessageAsItIs) {
 TEST(LogFormat, JsonLineCarriesTheLinesFields) {
   const std::string line = stderr_of(server::LogFormat::Json, [] {
     server::log_with(spdlog::level::info,
-                     {.client = 7, .address = "10.0.0.2:4100", .tick = 1200,
-                      .reason = "said \"bye\"", .bytes = 4096},
+                     {.client = 7,
+                      .address = "10.0.0.2:4100",
+                      .tick = 1200,
+                      .reason = "said \"bye\"",
+                      .bytes = 4096},
                      "client {} left", 7);
   });
   EXPECT_NE(line.find("\"message\":\"client 7 left\",\"client_id\":7,\"address\":\"10.0.0.2:"
@@ -66,8 +71,7 @@ TEST(LogFormat, JsonLineCarriesTheLinesFields) {
   });
   EXPECT_NE(some.find("\"message\":\"tick 5 overran\",\"tick\":5}\n"), std::string::npos) << some;
   // A line logged without fields, after one with them, has none.
-  const std::string none =
-      stderr_of(server::LogFormat::Json, [] { spdlog::info("no fields"); });
+  const std::string none = stderr_of(server::LogFormat::Json, [] { spdlog::info("no fields"); });
   EXPECT_NE(none.find("\"message\":\"no fields\"}\n"), std::string::npos) << none;
   const std::string text = stderr_of(server::LogFormat::Text, [] {
     server::log_with(spdlog::level::info, {.client = 7}, "client {} left", 7);
@@ -90,6 +94,25 @@ TEST(LogLevel, SetLogLevelHoldsBackLessSevereLines) {
   EXPECT_NE(written.find("an error"), std::string::npos) << written;
   server::set_log_level(server::LogLevel::Off);
   EXPECT_EQ(spdlog::get_level(), spdlog::level::off);
+  spdlog::set_level(before);
+}
+
+// ServerConfig::log_level is applied when the server is made; unset, the level stays.
+TEST(LogLevel, TheServerConfigsLevelIsAppliedAndUnsetLeavesItAlone) {
+  const spdlog::level::level_enum before = spdlog::get_level();
+  server::ServerConfig config;
+  config.port = 0;
+  config.log_level = server::LogLevel::Error;
+  {
+    const server::Server quiet(config, scene::default_scene());
+    EXPECT_EQ(spdlog::get_level(), spdlog::level::err);
+  }
+  config.log_level.reset();
+  spdlog::set_level(spdlog::level::debug);
+  {
+    const server::Server untouched(config, scene::default_scene());
+    EXPECT_EQ(spdlog::get_level(), spdlog::level::debug);
+  }
   spdlog::set_level(before);
 }
 

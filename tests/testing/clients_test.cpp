@@ -32,6 +32,23 @@ scene::SceneDef open_space() {
   return scene;
 }
 
+// A test's output holds the server's warnings and errors only: joins and leaves
+// (info lines) are not written under test_server_config's level.
+TEST(InProcessServer, WritesNoJoinLinesUnderTheTestConfigsLevel) {
+  EXPECT_EQ(test_server_config().log_level, server::LogLevel::Warn);
+  // spdlog's default logger writes to stdout; physics-server's, to stderr.
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  {
+    InProcessServer server(open_space());
+    Expected<Clients> clients = connect_clients(server.client_config("quiet"), 1);
+    EXPECT_TRUE(clients);
+  }
+  const std::string written =
+      ::testing::internal::GetCapturedStdout() + ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(written.find("joined"), std::string::npos) << written;
+}
+
 TEST(InProcessServer, ServesNClientsEachTheirOwnBody) {
   InProcessServer server(open_space());
   ASSERT_NE(server.port(), 0);

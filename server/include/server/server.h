@@ -14,6 +14,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "server/log_format.h"
 
 namespace server {
 
@@ -185,6 +186,12 @@ struct ServerConfig {
   // (docs/REPLAY.md; physics-sim --replay steps it again). A file that cannot be
   // created is refused with std::invalid_argument.
   std::string record_path;
+  // The least severe log line written: set, the server sets it when constructed
+  // (server::set_log_level: spdlog's default logger, which is the process's); unset,
+  // the level stays as it is (physics-server sets it from --log-level).
+  // physics::testing's configs say Warn, so a test's output holds the server's
+  // warnings and errors only.
+  std::optional<LogLevel> log_level;
 };
 
 // Why sessions ended, as counted in ServerStats::dropped.
@@ -290,7 +297,8 @@ class Server {
  public:
   // Builds the world from the scene and binds + listens. Throws std::system_error
   // (with the address in the message) if it cannot bind, std::invalid_argument for
-  // a config that makes no sense (tick rate <= 0 or > 10000, max_clients < 1, ...).
+  // a config that makes no sense (a tick rate outside [0.001, 1000], the range of
+  // scene::tick_rate_problem; max_clients < 1, ...).
   Server(ServerConfig config, scene::SceneDef scene);
   ~Server();
   Server(const Server&) = delete;

@@ -40,9 +40,9 @@ double depth(const phys::BodyDef& a, const phys::BodyDef& b) {
 }
 
 const BodySource& source_of(const std::vector<BodySource>& sources, std::size_t body) {
-  return *std::prev(std::upper_bound(
-      sources.begin(), sources.end(), body,
-      [](std::size_t index, const BodySource& s) { return index < s.first; }));
+  return *std::prev(
+      std::upper_bound(sources.begin(), sources.end(), body,
+                       [](std::size_t index, const BodySource& s) { return index < s.first; }));
 }
 
 // "bodies[3]", or "grids[0] (its body 7)".

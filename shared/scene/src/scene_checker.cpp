@@ -80,8 +80,7 @@ SceneResult check_scene(const proto::Scene& message, std::string_view origin,
   }
   for (int i = 0; i < message.grids_size(); ++i) {
     sources.push_back({def.bodies.size(), FieldPath().child("grids", i), true});
-    if (!check_grid(check, message.grids(i), sources.back().path, &def))
-      return check.take_error();
+    if (!check_grid(check, message.grids(i), sources.back().path, &def)) return check.take_error();
   }
   if (!check_overlaps(check, def, sources)) return check.take_error();
   if (!check_spawns(check, message, &def)) return check.take_error();

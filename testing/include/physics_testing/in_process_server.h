@@ -16,7 +16,8 @@ namespace physics_testing {
 
 // A config for tests: 127.0.0.1, port 0 (a free port), the given mode, no per-address
 // connection rate or Hello backoff (every client of a test comes from one address),
-// otherwise the server's defaults.
+// log lines of level warn and above only (set config.log_level to see more: Info
+// shows every join and leave), otherwise the server's defaults.
 server::ServerConfig test_server_config(bool lockstep = false);
 
 // A scene file (docs/SCENES.md) as a SceneDef, or the loader's message (file, line
