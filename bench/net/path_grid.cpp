@@ -59,15 +59,6 @@ struct Row {
   std::string note;
 };
 
-// A relay to the server on `port` over `path`.
-physics_testing::LinkConditionerConfig relay_to(std::uint16_t port,
-                                                physics_testing::PathConfig path) {
-  physics_testing::LinkConditionerConfig config;
-  config.target_port = port;
-  config.path = std::move(path);
-  return config;
-}
-
 physics_testing::PathConfig path_config(const Path& path) {
   physics_testing::PathConfig config = physics_testing::symmetric_path(
       std::chrono::milliseconds(path.one_way_ms), std::chrono::milliseconds(path.jitter_ms));
@@ -144,7 +135,8 @@ Row run_lockstep(const PathGridOptions& options, int clients, const Path& path,
   config.lockstep_pace = server::ServerConfig::Pace::Realtime;
   config.lockstep_players = clients;
   physics_testing::InProcessServer server(options.lockstep_scene, config);
-  physics_testing::LinkConditioner link(relay_to(server.port(), path_config(path)));
+  physics_testing::LinkConditioner link(
+      physics_testing::relay_to(server.port(), path_config(path)));
   physics_testing::Endpoint endpoint;
   endpoint.port = link.port();
   client::ClientConfig base = endpoint.exact_client_config("netbench");
@@ -204,7 +196,8 @@ Row run_fixed(const PathGridOptions& options, const Path& path, Behaviour behavi
   server::ServerConfig config = physics_testing::test_server_config(false);
   config.tick_rate = options.tick_rate;
   physics_testing::InProcessServer server(options.fixed_scene, config);
-  physics_testing::LinkConditioner link(relay_to(server.port(), path_config(path)));
+  physics_testing::LinkConditioner link(
+      physics_testing::relay_to(server.port(), path_config(path)));
   client::LoadConfig load;
   load.client.port = link.port();
   load.client.name = "netbench";

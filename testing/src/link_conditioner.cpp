@@ -80,6 +80,13 @@ PathConfig symmetric_path(std::chrono::microseconds one_way, std::chrono::micros
   return path;
 }
 
+LinkConditionerConfig relay_to(std::uint16_t port, PathConfig path) {
+  LinkConditionerConfig config;
+  config.target_port = port;
+  config.path = std::move(path);
+  return config;
+}
+
 struct LinkConditioner::Impl {
   explicit Impl(LinkConditionerConfig settings) : config(std::move(settings)) {}
 

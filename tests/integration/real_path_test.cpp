@@ -19,20 +19,12 @@ namespace itest {
 namespace {
 
 using physics_testing::LinkConditioner;
+using physics_testing::relay_to;
 using physics_testing::symmetric_path;
 
 client::Vec2 scripted(std::size_t k, std::uint64_t tick) {
   const double phase = static_cast<double>(tick) * 0.13 + static_cast<double>(k) * 1.1;
   return {5.0 * std::cos(phase), 5.0 * std::sin(phase) + 4.0};
-}
-
-// A relay to the server on `port` over `path`.
-physics_testing::LinkConditionerConfig relay_to(std::uint16_t port,
-                                                physics_testing::PathConfig path) {
-  physics_testing::LinkConditionerConfig config;
-  config.target_port = port;
-  config.path = std::move(path);
-  return config;
 }
 
 server::ServerConfig realtime_lockstep(std::size_t players) {

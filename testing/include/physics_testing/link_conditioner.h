@@ -64,12 +64,15 @@ struct LinkConditionerConfig {
   std::size_t max_held_bytes = 4u << 20;
 };
 
+// A relay from a free loopback port to a server on loopback `port`, over `path`.
+LinkConditionerConfig relay_to(std::uint16_t port, PathConfig path);
+
 struct LinkStats {
-  std::uint64_t connections = 0;       // accepted so far
-  std::uint64_t bytes_to_server = 0;   // delivered
+  std::uint64_t connections = 0;      // accepted so far
+  std::uint64_t bytes_to_server = 0;  // delivered
   std::uint64_t bytes_to_client = 0;
-  std::uint64_t stalls = 0;            // begun, both directions
-  std::uint64_t held_bytes_peak = 0;   // the most bytes held at once in one direction
+  std::uint64_t stalls = 0;           // begun, both directions
+  std::uint64_t held_bytes_peak = 0;  // the most bytes held at once in one direction
 };
 
 class LinkConditioner {
