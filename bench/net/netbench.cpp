@@ -131,8 +131,9 @@ int main(int argc, char** argv) {
   std::string fixed_scene = "scenes/moving-1000.textproto";
   app.add_flag("--paths", paths,
                "Run the path grid instead: lockstep and fixed rate through a link conditioner "
-               "at each one-way latency and jitter, with the client library as it is and as it "
-               "was (inputs after each snapshot, a window of 12), side by side");
+               "at each one-way latency and jitter, with the client library's defaults (inputs "
+               "ahead on the client's clock) beside the snapshot-driven schedule (inputs after "
+               "each snapshot, a window of 12)");
   app.add_option("--one-way-ms", grid.one_way_ms, "Path grid: one-way latencies")
       ->capture_default_str()
       ->delimiter(',')

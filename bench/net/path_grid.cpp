@@ -28,16 +28,17 @@ struct Path {
   int stall_every_ms = 0;
 };
 
-// "now": the client library as it is; "before": inputs after each snapshot and a
-// window of 12, as it was.
-enum class Behaviour { Now, Before };
+// "clock": the client library's defaults (inputs ahead on the client's clock, a
+// window grown with the round trip); "after-snapshot": the input for T+1 once the
+// snapshot of T arrived and a window of 12 asked for, for comparison.
+enum class Behaviour { Clock, AfterSnapshot };
 
-const char* name(Behaviour b) { return b == Behaviour::Now ? "now" : "before"; }
+const char* name(Behaviour b) { return b == Behaviour::Clock ? "clock" : "after-snapshot"; }
 
 struct Row {
   std::string mode;  // "lockstep" or "fixed"
   int clients = 0;
-  Behaviour behaviour = Behaviour::Now;
+  Behaviour behaviour = Behaviour::Clock;
   Path path;
   double seconds = 0.0;
   // Lockstep.
@@ -69,7 +70,7 @@ physics_testing::PathConfig path_config(const Path& path) {
 
 client::PacerConfig pacer_for(Behaviour behaviour) {
   client::PacerConfig pacer;
-  if (behaviour == Behaviour::Before) pacer.schedule = client::InputSchedule::AfterSnapshot;
+  if (behaviour == Behaviour::AfterSnapshot) pacer.schedule = client::InputSchedule::AfterSnapshot;
   return pacer;
 }
 
@@ -140,15 +141,16 @@ Row run_lockstep(const PathGridOptions& options, int clients, const Path& path,
   physics_testing::Endpoint endpoint;
   endpoint.port = link.port();
   client::ClientConfig base = endpoint.exact_client_config("netbench");
-  if (behaviour == Behaviour::Before) base.view.window = 12;
+  if (behaviour == Behaviour::AfterSnapshot) base.view.window = 12;
   auto joined = physics_testing::connect_clients(base, static_cast<std::size_t>(clients), 20s);
   if (!joined) {
     row.note = joined.message();
     return row;
   }
   const double period = 1.0 / options.tick_rate;
-  // The first second settles; the rest is measured. Before, a tick costs a round trip.
-  const double tick_cost = behaviour == Behaviour::Now
+  // The first second settles; the rest is measured. After each snapshot, a tick costs a
+  // round trip.
+  const double tick_cost = behaviour == Behaviour::Clock
                                ? period
                                : std::max(period, 2.0 * path.one_way_ms / 1000.0 + period);
   const auto settle = static_cast<std::uint64_t>(std::ceil(1.0 / tick_cost));
@@ -201,7 +203,7 @@ Row run_fixed(const PathGridOptions& options, const Path& path, Behaviour behavi
   client::LoadConfig load;
   load.client.port = link.port();
   load.client.name = "netbench";
-  if (behaviour == Behaviour::Before) load.client.view.window = 12;
+  if (behaviour == Behaviour::AfterSnapshot) load.client.view.window = 12;
   load.pacer = pacer_for(behaviour);
   load.bots = 1;
   load.settle = 1s;
@@ -231,8 +233,8 @@ void print_row(const Row& r, double tick_rate, std::FILE* csv) {
         name(r.behaviour), r.path.one_way_ms, r.path.jitter_ms,
         r.path.stall_ms > 0 ? fmt::format("{}/{}", r.path.stall_ms, r.path.stall_every_ms) : "-",
         r.ticks_per_second,
-        // Before, the input for T+1 went on the snapshot of T: no delay was chosen.
-        r.behaviour == Behaviour::Now
+        // After each snapshot, the input for T+1 goes on the snapshot of T: no delay is chosen.
+        r.behaviour == Behaviour::Clock
             ? fmt::format("{:.1f} (max {}; bound {:.1f})", r.delay_median, r.delay_max, bound)
             : std::string("-"),
         r.timeouts_steady, r.hashes_equal ? "yes" : "NO", r.missing,
@@ -244,7 +246,7 @@ void print_row(const Row& r, double tick_rate, std::FILE* csv) {
         r.path.stall_ms > 0 ? fmt::format("{}/{}", r.path.stall_ms, r.path.stall_every_ms) : "-",
         r.snapshots_per_second, r.latency_median_ms, r.latency_p99_ms, r.age_median_ms,
         r.age_p99_ms, r.kbit_per_second, r.skipped,
-        r.behaviour == Behaviour::Now ? fmt::format("{:.1f}", r.delay_median) : std::string("-"));
+        r.behaviour == Behaviour::Clock ? fmt::format("{:.1f}", r.delay_median) : std::string("-"));
   }
   if (!r.note.empty()) fmt::print(stderr, "  note: {}\n", r.note);
   if (csv != nullptr) {
@@ -295,7 +297,7 @@ int run_path_grid(const PathGridOptions& options) {
     fmt::print("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Path& path : paths)
       for (const int clients : options.lockstep_clients)
-        for (const Behaviour b : {Behaviour::Now, Behaviour::Before})
+        for (const Behaviour b : {Behaviour::Clock, Behaviour::AfterSnapshot})
           print_row(run_lockstep(options, clients, path, b), options.tick_rate, csv);
   }
   if (options.fixed) {
@@ -307,7 +309,7 @@ int run_path_grid(const PathGridOptions& options) {
         "input delay ticks |\n");
     fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Path& path : paths)
-      for (const Behaviour b : {Behaviour::Now, Behaviour::Before})
+      for (const Behaviour b : {Behaviour::Clock, Behaviour::AfterSnapshot})
         print_row(run_fixed(options, path, b), options.tick_rate, csv);
   }
   if (csv != nullptr) std::fclose(csv);

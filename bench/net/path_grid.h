@@ -1,9 +1,10 @@
 #pragma once
 // physics-netbench --paths: the network figures over conditioned paths (one-way
 // latency, jitter, stalls; physics_testing::LinkConditioner), each cell run twice side
-// by side: as the client library sends inputs now (on its clock, ahead by the input
-// delay; the server's window grows with the round trip) and as it did before (the
-// input for T+1 once the snapshot of T arrived; a fixed window of 12).
+// by side: with the client library's defaults ("clock": inputs ahead of the server by
+// the input delay, on the client's clock; the window grows with the round trip) and
+// with the snapshot-driven schedule ("after-snapshot": the input for T+1 once the
+// snapshot of T arrived; a window of 12 asked for).
 #include <string>
 #include <vector>
 
