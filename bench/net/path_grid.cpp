@@ -31,14 +31,14 @@ struct Path {
 // "clock": the client library's defaults (inputs ahead on the client's clock, a
 // window grown with the round trip); "after-snapshot": the input for T+1 once the
 // snapshot of T arrived and a window of 12 asked for, for comparison.
-enum class Behaviour { Clock, AfterSnapshot };
+enum class Behaviour { OnClock, AfterSnapshot };
 
-const char* name(Behaviour b) { return b == Behaviour::Clock ? "clock" : "after-snapshot"; }
+const char* name(Behaviour b) { return b == Behaviour::OnClock ? "clock" : "after-snapshot"; }
 
 struct Row {
   std::string mode;  // "lockstep" or "fixed"
   int clients = 0;
-  Behaviour behaviour = Behaviour::Clock;
+  Behaviour behaviour = Behaviour::OnClock;
   Path path;
   double seconds = 0.0;
   // Lockstep.
@@ -150,7 +150,7 @@ Row run_lockstep(const PathGridOptions& options, int clients, const Path& path,
   const double period = 1.0 / options.tick_rate;
   // The first second settles; the rest is measured. After each snapshot, a tick costs a
   // round trip.
-  const double tick_cost = behaviour == Behaviour::Clock
+  const double tick_cost = behaviour == Behaviour::OnClock
                                ? period
                                : std::max(period, 2.0 * path.one_way_ms / 1000.0 + period);
   const auto settle = static_cast<std::uint64_t>(std::ceil(1.0 / tick_cost));
@@ -234,7 +234,7 @@ void print_row(const Row& r, double tick_rate, std::FILE* csv) {
         r.path.stall_ms > 0 ? fmt::format("{}/{}", r.path.stall_ms, r.path.stall_every_ms) : "-",
         r.ticks_per_second,
         // After each snapshot, the input for T+1 goes on the snapshot of T: no delay is chosen.
-        r.behaviour == Behaviour::Clock
+        r.behaviour == Behaviour::OnClock
             ? fmt::format("{:.1f} (max {}; bound {:.1f})", r.delay_median, r.delay_max, bound)
             : std::string("-"),
         r.timeouts_steady, r.hashes_equal ? "yes" : "NO", r.missing,
@@ -246,7 +246,7 @@ void print_row(const Row& r, double tick_rate, std::FILE* csv) {
         r.path.stall_ms > 0 ? fmt::format("{}/{}", r.path.stall_ms, r.path.stall_every_ms) : "-",
         r.snapshots_per_second, r.latency_median_ms, r.latency_p99_ms, r.age_median_ms,
         r.age_p99_ms, r.kbit_per_second, r.skipped,
-        r.behaviour == Behaviour::Clock ? fmt::format("{:.1f}", r.delay_median) : std::string("-"));
+        r.behaviour == Behaviour::OnClock ? fmt::format("{:.1f}", r.delay_median) : std::string("-"));
   }
   if (!r.note.empty()) fmt::print(stderr, "  note: {}\n", r.note);
   if (csv != nullptr) {
@@ -297,7 +297,7 @@ int run_path_grid(const PathGridOptions& options) {
     fmt::print("|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Path& path : paths)
       for (const int clients : options.lockstep_clients)
-        for (const Behaviour b : {Behaviour::Clock, Behaviour::AfterSnapshot})
+        for (const Behaviour b : {Behaviour::OnClock, Behaviour::AfterSnapshot})
           print_row(run_lockstep(options, clients, path, b), options.tick_rate, csv);
   }
   if (options.fixed) {
@@ -309,7 +309,7 @@ int run_path_grid(const PathGridOptions& options) {
         "input delay ticks |\n");
     fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const Path& path : paths)
-      for (const Behaviour b : {Behaviour::Clock, Behaviour::AfterSnapshot})
+      for (const Behaviour b : {Behaviour::OnClock, Behaviour::AfterSnapshot})
         print_row(run_fixed(options, path, b), options.tick_rate, csv);
   }
   if (csv != nullptr) std::fclose(csv);
