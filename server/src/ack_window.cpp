@@ -21,15 +21,13 @@ void AckWindow::acked(std::uint64_t tick, time_point at) {
     while (samples_.size() > kMaxSamples || (samples_.front().at + kRoundTripMemory < at)) {
       samples_.pop_front();
     }
+    // Kept here, where the samples change, not in window(): that is asked for on
+    // every due tick of every client.
+    least_ =
+        std::min_element(samples_.begin(), samples_.end(), [](const Sample& x, const Sample& y) {
+          return x.round_trip < y.round_trip;
+        })->round_trip;
   }
-}
-
-std::optional<std::chrono::nanoseconds> AckWindow::round_trip() const {
-  if (samples_.empty()) return std::nullopt;
-  return std::min_element(
-             samples_.begin(), samples_.end(),
-             [](const Sample& a, const Sample& b) { return a.round_trip < b.round_trip; })
-      ->round_trip;
 }
 
 std::uint32_t AckWindow::window() const {

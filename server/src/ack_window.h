@@ -33,7 +33,7 @@ class AckWindow {
   std::size_t unacknowledged() const { return sent_.size(); }
   bool open() const { return sent_.size() < window(); }
   std::uint32_t window() const;
-  std::optional<std::chrono::nanoseconds> round_trip() const;
+  std::optional<std::chrono::nanoseconds> round_trip() const { return least_; }
 
  private:
   struct Sent {
@@ -50,8 +50,9 @@ class AckWindow {
   std::uint32_t floor_;
   bool adapts_;
   Sizing sizing_;
-  std::deque<Sent> sent_;       // ascending ticks, at most the window
-  std::deque<Sample> samples_;  // the last kRoundTripMemory, at most kMaxSamples
+  std::deque<Sent> sent_;                          // ascending ticks, at most the window
+  std::deque<Sample> samples_;                     // the last kRoundTripMemory, at most kMaxSamples
+  std::optional<std::chrono::nanoseconds> least_;  // the least round trip of samples_
 };
 
 }  // namespace server
