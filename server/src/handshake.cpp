@@ -120,8 +120,8 @@ HelloDecision Handshake::decide_spectator(ClientId client, HelloDecision decisio
 HelloDecision Handshake::decide_player(ClientId client, const physics::wire::Hello& hello,
                                        Simulation& simulation, const std::string& address,
                                        HelloDecision decision) {
-  // The room holds exactly the players welcomed and not gone (a straggler leaves it
-  // before its connection closes, freeing its place but not yet its seat).
+  // The room holds exactly the players welcomed and not gone (a straggler leaves it,
+  // and its seat, before its connection closes).
   if (simulation.room().size() + lobby_.size() >= max_clients_) {
     return refuse(std::move(decision), physics::wire::ERROR_SERVER_FULL,
                   "server full: " + std::to_string(max_clients_) + " clients connected",

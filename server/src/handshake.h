@@ -99,6 +99,7 @@ class Handshake {
   bool is_spectator(ClientId client) const { return spectators_.count(client) > 0; }
   std::size_t spectator_count() const { return spectators_.size(); }
   std::size_t lobby_size() const { return lobby_.size(); }
+  bool in_lobby(ClientId client) const { return lobby_.count(client) > 0; }
   // True without a lobby; with one, once every seat was taken.
   bool lobby_open() const { return lobby_open_; }
   const SeatTable& seats() const { return seats_; }

@@ -147,6 +147,23 @@ void Server::Impl::on_handler_failed(Session& session, const char* what) {
   }
 }
 
+// Settled when the end is decided, not when the socket closes: the peer sees the
+// Error (and the end of the stream) before the server's close, and may take a seat
+// again at once. It must find the back-off in force and a straggler's seat free.
+void Server::Impl::on_closing(Session& session, DropReason reason) {
+  if (!session.joined()) return;
+  if (reason == DropReason::LockstepStraggler || reason == DropReason::NotReading ||
+      reason == DropReason::TooSlow) {
+    address_limits_.on_player_dropped(session.address(), std::chrono::steady_clock::now());
+  }
+  // A straggler has left the world (drop_stragglers); its seat goes with it.
+  const std::uint32_t id = session.id();
+  if (!simulation_.room().contains(id) && !handshake_.is_spectator(id) &&
+      !handshake_.in_lobby(id)) {
+    handshake_.leave(id);
+  }
+}
+
 void Server::Impl::on_closed(Session& session, DropReason reason) {
   const std::uint32_t id = session.id();
   feeds_.leave(id);  // a subscription made by a Hello that then failed, too
@@ -154,10 +171,7 @@ void Server::Impl::on_closed(Session& session, DropReason reason) {
     address_limits_.on_failed_hello(session.address(), std::chrono::steady_clock::now());
     update_stats([](ServerStats& s) { ++s.failed_hellos; });
   }
-  if (session.joined() && (reason == DropReason::LockstepStraggler ||
-                           reason == DropReason::NotReading || reason == DropReason::TooSlow)) {
-    address_limits_.on_player_dropped(session.address(), std::chrono::steady_clock::now());
-  }
+  // A seat freed already by on_closing leaves Member::None: a player all the same.
   const Handshake::Member member =
       session.joined() ? handshake_.leave(id) : Handshake::Member::None;  // frees its seat
   const LogFields left{.client = id, .address = session.peer(), .reason = to_string(reason)};

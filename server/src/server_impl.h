@@ -46,6 +46,7 @@ class Server::Impl final : public SessionHost {
 
   // SessionHost
   void on_message(Session& session, physics::wire::ClientMessage& message) override;
+  void on_closing(Session& session, DropReason reason) override;
   void on_closed(Session& session, DropReason reason) override;
   void on_bytes(std::size_t sent, std::size_t received) override;
   void on_throttled(Session& session) override;

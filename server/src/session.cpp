@@ -259,6 +259,13 @@ void Session::close_with_error(physics::wire::ErrorCode code, const std::string&
   close_reason_ = reason;
   close_deadline_ = clock::now() + limits_.close_linger;
   enqueue(std::move(item));
+  announce_closing(reason);
+}
+
+void Session::announce_closing(DropReason reason) {
+  if (announced_closing_) return;
+  announced_closing_ = true;
+  host_.on_closing(*this, reason);
 }
 
 void Session::close_now(DropReason reason) {
@@ -304,6 +311,7 @@ void Session::finish(DropReason reason) {
   queue_.clear();
   waiting_snapshots_ = 0;
   resume_timer_.cancel();
+  announce_closing(reason);
   host_.on_closed(*this, reason);
 }
 

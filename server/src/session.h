@@ -28,6 +28,10 @@ class Session;
 class SessionHost {
  public:
   virtual void on_message(Session& session, physics::wire::ClientMessage& message) = 0;
+  // Called once, when the session's end is decided: the Error is queued (or the
+  // socket is about to close without one), and the peer may see its end before
+  // on_closed. What a peer may do next, such as take a seat again, is settled here.
+  virtual void on_closing(Session& /*session*/, DropReason /*reason*/) {}
   // Called once, after the socket is closed.
   virtual void on_closed(Session& session, DropReason reason) = 0;
   virtual void on_bytes(std::size_t sent, std::size_t received) = 0;
@@ -144,6 +148,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void enqueue(Outgoing item);
   void do_write();
   void finish(DropReason reason);
+  void announce_closing(DropReason reason);
 
   asio::ip::tcp::socket socket_;
   std::uint32_t id_;
@@ -171,6 +176,7 @@ class Session : public std::enable_shared_from_this<Session> {
   bool joined_ = false;
   bool closing_ = false;
   bool closed_ = false;
+  bool announced_closing_ = false;  // host_.on_closing has been called
   DropReason close_reason_ = DropReason::Disconnected;
   clock::time_point accepted_;
   clock::time_point last_received_;

@@ -18,6 +18,15 @@
 namespace phys {
 
 struct StepScratch {
+  // Not state, so a copied world (World::save, World::restore) copies none of it:
+  // a copy starts empty, and assigning keeps the target's own buffers.
+  StepScratch() = default;
+  StepScratch(const StepScratch& /*other*/) {}
+  StepScratch& operator=(const StepScratch& /*other*/) { return *this; }
+  StepScratch(StepScratch&&) = default;
+  StepScratch& operator=(StepScratch&&) = default;
+  ~StepScratch() = default;
+
   // Written and read by order_by_height (step_order.cpp) alone.
   struct Order {
     std::vector<double> keys;                             // per position: height

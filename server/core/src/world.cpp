@@ -201,6 +201,60 @@ std::uint64_t WorldImpl::state_hash() const {
 World::World(const WorldSettings& settings) : impl_(std::make_unique<WorldImpl>(settings)) {}
 World::~World() = default;
 World::World(World&&) noexcept = default;
+
+World::World(const SavedWorld& saved) : impl_(std::make_unique<WorldImpl>(*saved.impl_)) {
+  assert(!saved.empty());
+  impl_->counters = {};
+  impl_->profile = {};
+}
+
+SavedWorld World::save() const {
+  SavedWorld saved;
+  save_into(saved);
+  return saved;
+}
+
+void World::save_into(SavedWorld& target) const {
+  if (target.impl_) {
+    *target.impl_ = *impl_;  // reuses the target's arrays
+  } else {
+    target.impl_ = std::make_unique<WorldImpl>(*impl_);
+  }
+}
+
+void World::restore(const SavedWorld& saved) {
+  assert(!saved.empty());
+  // The counters and the profile count the work done, steps rolled back included.
+  StageCounters counters = impl_->counters;
+  StepProfile profile = impl_->profile;
+  *impl_ = *saved.impl_;
+  impl_->counters = counters;
+  impl_->profile = profile;
+}
+
+// ---- SavedWorld ----
+
+SavedWorld::SavedWorld() = default;
+SavedWorld::~SavedWorld() = default;
+SavedWorld::SavedWorld(SavedWorld&&) noexcept = default;
+SavedWorld& SavedWorld::operator=(SavedWorld&&) noexcept = default;
+SavedWorld::SavedWorld(const SavedWorld& other)
+    : impl_(other.impl_ ? std::make_unique<WorldImpl>(*other.impl_) : nullptr) {}
+SavedWorld& SavedWorld::operator=(const SavedWorld& other) {
+  if (this == &other) return *this;
+  if (!other.impl_) {
+    impl_.reset();
+  } else if (impl_) {
+    *impl_ = *other.impl_;
+  } else {
+    impl_ = std::make_unique<WorldImpl>(*other.impl_);
+  }
+  return *this;
+}
+
+std::uint64_t SavedWorld::step_count() const { return impl_ ? impl_->steps : 0; }
+
+std::size_t SavedWorld::bytes() const { return impl_ ? impl_->state_bytes() : 0; }
 World& World::operator=(World&&) noexcept = default;
 
 BodyId World::add_body(const BodyDef& def, BodyDefError* error) {
@@ -288,5 +342,14 @@ std::size_t World::contacts_in_touch() const { return impl_->contact_tracker.con
 const WorldSettings& World::settings() const { return impl_->settings; }
 const StageCounters& World::counters() const { return impl_->counters; }
 const StepProfile& World::last_profile() const { return impl_->profile; }
+
+std::size_t WorldImpl::state_bytes() const {
+  const auto held = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  return sizeof(WorldImpl) + held(bodies) + held(warm_count) + held(warm_first) + held(warm) +
+         held(warm_pool) + held(lists.active) + held(lists.fixed) + held(lists.fixed_boxes) +
+         held(candidates.list) + held(candidates.first) + held(candidates.fat_boxes) +
+         held(free_slots_) + held(changed_slots_) + contact_tracker.state_bytes() +
+         lists.fixed_grid.state_bytes();
+}
 
 }  // namespace phys

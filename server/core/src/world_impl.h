@@ -115,6 +115,8 @@ class WorldImpl {
   void wake(std::uint32_t index);
   void step(double dt);
   std::uint64_t state_hash() const;
+  // Heap bytes of the state a SavedWorld copies (its arrays' capacity).
+  std::size_t state_bytes() const;
   std::size_t alive_count() const { return alive_count_; }
   std::size_t dynamic_count() const { return dynamic_count_; }
 

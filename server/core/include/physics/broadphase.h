@@ -35,6 +35,11 @@ class UniformGrid {
   void find_overlaps(const Aabb& query, std::vector<std::uint32_t>& out) const;
   std::size_t size() const { return boxes_.size(); }
   double cell_size() const { return cell_size_; }
+  // Heap bytes of the index (the boxes and the cells), for memory budgets.
+  std::size_t state_bytes() const {
+    return boxes_.capacity() * sizeof(Aabb) + cell_start_.capacity() * sizeof(std::uint32_t) +
+           cell_items_.capacity() * sizeof(std::uint32_t) + cell_boxes_.capacity() * sizeof(Aabb);
+  }
 
   // Conveniences: build, then pairs among `boxes`; or pairs (query index, target
   // index) between two sets, sorted by query then target.

@@ -5,6 +5,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "physics/body.h"
@@ -15,6 +17,31 @@
 namespace phys {
 
 class WorldImpl;
+class World;
+
+// A world's full state as a value (World::save): everything a step reads, so that
+// restoring it and stepping gives, bit for bit, what the saved world would have
+// given. Not the counters or the profile, which count work done, rolled back or not.
+// Copyable; an empty SavedWorld holds nothing and cannot be restored.
+class SavedWorld {
+ public:
+  SavedWorld();
+  ~SavedWorld();
+  SavedWorld(const SavedWorld& other);
+  SavedWorld& operator=(const SavedWorld& other);
+  SavedWorld(SavedWorld&&) noexcept;
+  SavedWorld& operator=(SavedWorld&&) noexcept;
+
+  bool empty() const { return impl_ == nullptr; }
+  // The step count of the world when it was saved.
+  std::uint64_t step_count() const;
+  // Bytes the saved state holds on the heap (its arrays' capacity), for budgets.
+  std::size_t bytes() const;
+
+ private:
+  friend class World;
+  std::unique_ptr<WorldImpl> impl_;
+};
 
 class World {
  public:
@@ -25,6 +52,28 @@ class World {
   World& operator=(World&&) noexcept;
   World(const World&) = delete;
   World& operator=(const World&) = delete;
+  // A world in the saved state, with fresh counters (saved must not be empty).
+  explicit World(const SavedWorld& saved);
+
+  // Saved and restored state (SavedWorld says what it holds). save_into reuses the
+  // target's arrays, so that saving every tick allocates nothing once they are
+  // large enough; restore likewise reuses this world's. Rolling back N steps is
+  // restore, then step N times. Contact events set on or off travel with the state.
+  SavedWorld save() const;
+  void save_into(SavedWorld& target) const;
+  // `saved` must not be empty (a programmer error otherwise). The settings are
+  // part of the state: afterwards they are the saved world's.
+  void restore(const SavedWorld& saved);
+
+  // The full state (what save() holds) as bytes, for a world in another process
+  // built from the same core: a format tag and version, then each array with its
+  // length, every number as its little-endian bit pattern. from_bytes checks the
+  // tag, the version, every length and every body; nullopt and *error when the bytes
+  // are not a world this core wrote. Not a stable interchange format: another
+  // version of the core may refuse it.
+  std::vector<std::uint8_t> to_bytes() const;
+  static std::optional<World> from_bytes(std::span<const std::uint8_t> bytes,
+                                         std::string* error = nullptr);
 
   // Adds a body; bodies may be added and removed between steps at any time.
   // Returns BodyId::invalid() and sets *error when the def is refused.
