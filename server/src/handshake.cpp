@@ -87,6 +87,12 @@ HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wir
     return refuse(std::move(decision), physics::wire::ERROR_INVALID_VIEW, std::move(problem),
                   DropReason::InvalidView);
   }
+  if (decision.view.encoding == physics::wire::ENCODING_INPUTS && !hello.want_world()) {
+    return refuse(std::move(decision), physics::wire::ERROR_INVALID_VIEW,
+                  "view.encoding ENCODING_INPUTS relays inputs, not bodies: it needs "
+                  "Hello.want_world, for the world to step them in",
+                  DropReason::InvalidView);
+  }
   if (hello.has_contacts()) {
     ContactFilter contacts;
     if (std::string problem = resolve_contacts(hello.contacts(), hello.spectate(), contacts);

@@ -5,7 +5,8 @@
 namespace server {
 
 std::optional<phys::BodyId> Room::join(ClientId client, const scene::SceneDef& scene,
-                                       phys::World& world, std::optional<std::uint32_t> seat) {
+                                       phys::World& world, std::optional<std::uint32_t> seat,
+                                       phys::BodyDef* made) {
   if (contains(client)) return std::nullopt;
   const std::optional<phys::Vec2> where = find_spawn_position(scene, world, seat);
   if (!where) return std::nullopt;
@@ -16,6 +17,7 @@ std::optional<phys::BodyId> Room::join(ClientId client, const scene::SceneDef& s
   def.acceleration = {};
   const phys::BodyId body = world.add_body(def);
   if (!body.is_valid()) return std::nullopt;
+  if (made) *made = def;
   bodies_.emplace(client, body);
   return body;
 }

@@ -19,6 +19,11 @@ namespace server {
 void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello) {
   // An address whose players were dropped for straggling or not reading waits
   // before it takes a seat again (address_limits.h).
+  if (hello.want_world() && !relay_attached_) {
+    simulation_.relay_to(&relay_log_);
+    relay_attached_ = true;
+  }
+  session.set_wants_world(hello.want_world());
   if (!session.joined() && !hello.spectate()) {
     const auto wait =
         address_limits_.seat_wait(session.address(), std::chrono::steady_clock::now());
@@ -73,17 +78,29 @@ void Server::Impl::welcome_player(Session& session, phys::BodyId body,
   publish_connection_counts();
   const std::uint32_t seat = handshake_.seats().seat_of(session.id()).value_or(0);
   if (log_admits("joined", session.address())) {
-    log_with(spdlog::level::info,
-             {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
-             "client {} '{}' ({}) joined at tick {} in seat {} with body {}", session.id(),
-             session.name(), session.peer(), simulation_.current_tick(), seat, body.packed());
+    log_with(
+        spdlog::level::info,
+        {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
+        "client {} '{}' ({}) joined at tick {} in seat {} with body {}", session.id(),
+        session.name(), session.peer(), simulation_.current_tick(), seat, body.packed());
   }
   physics::wire::ServerMessage welcome =
       make_welcome(simulation_, session.id(), body, config_.lockstep, wire::to_wire(view),
                    static_cast<std::uint32_t>(config_.max_clients));
   welcome.mutable_welcome()->set_seat(seat);
   welcome.mutable_welcome()->set_seats(handshake_.seats().size());
+  give_world(session, view, welcome);
   session.send(welcome);
+}
+
+void Server::Impl::give_world(Session& session, const wire::ViewSettings& view,
+                              physics::wire::ServerMessage& welcome) {
+  if (!session.wants_world()) return;
+  const std::vector<std::uint8_t> bytes = simulation_.world().to_bytes();
+  welcome.mutable_welcome()->set_world_state(bytes.data(), bytes.size());
+  if (view.encoding == physics::wire::ENCODING_INPUTS) {
+    relay_cursors_[session.id()] = {simulation_.current_tick(), relay_log_.next_change(), false};
+  }
 }
 
 // Every seat is taken: the handshake makes the bodies in seat order; every player
@@ -113,16 +130,18 @@ void Server::Impl::welcome_spectator(Session& session, const wire::ViewSettings&
   feeds_.join(session.id(), view, std::nullopt);
   publish_connection_counts();
   if (log_admits("joined", session.address())) {
-    log_with(spdlog::level::info,
-             {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
-             "spectator {} '{}' ({}) joined at tick {}", session.id(), session.name(), session.peer(),
-             simulation_.current_tick());
+    log_with(
+        spdlog::level::info,
+        {.client = session.id(), .address = session.peer(), .tick = simulation_.current_tick()},
+        "spectator {} '{}' ({}) joined at tick {}", session.id(), session.name(), session.peer(),
+        simulation_.current_tick());
   }
   physics::wire::ServerMessage welcome =
       make_welcome(simulation_, session.id(), phys::BodyId::invalid(), config_.lockstep,
                    wire::to_wire(view), static_cast<std::uint32_t>(config_.max_clients));
   welcome.mutable_welcome()->set_body_id(0);
   welcome.mutable_welcome()->set_spectator(true);
+  give_world(session, view, welcome);
   session.send(welcome);
 }
 

@@ -23,6 +23,7 @@
 #include "physics/clock.h"
 #include "physics/fixed_timestep.h"
 #include "server/lockstep_gate.h"
+#include "server/relay_log.h"
 #include "server/server.h"
 #include "server/simulation.h"
 #include "session.h"
@@ -85,6 +86,13 @@ class Server::Impl final : public SessionHost {
   void on_input(Session& session, const physics::wire::Input& input);
   void on_ack(Session& session, const physics::wire::Ack& ack);
   void on_full_state_request(Session& session);
+  // With Hello.want_world: the world's state in the Welcome, and the client's place
+  // in the relay when its view is ENCODING_INPUTS.
+  void give_world(Session& session, const wire::ViewSettings& view,
+                  physics::wire::ServerMessage& welcome);
+  // A relay client's snapshot bytes: the ticks since the previous one, or the
+  // world's state when asked for or when the relay no longer holds its ticks.
+  std::string relay_bytes(RelayCursor& cursor, std::uint64_t tick, std::uint32_t hash_interval);
 
   template <typename Update>
   void update_stats(Update&& update) {
@@ -112,6 +120,18 @@ class Server::Impl final : public SessionHost {
   LockstepGate gate_;
   SnapshotFeeds feeds_;
   TruthFrame previous_frame_;
+  // The input relay (relay_log.h): attached to the simulation when the first client
+  // asks for the world, so that a server without such clients pays nothing for it.
+  // Each relay client's place in it: the last tick it was sent, and the first change
+  // its world does not hold yet.
+  struct RelayCursor {
+    std::uint64_t after_tick = 0;
+    std::uint64_t first_change = 0;
+    bool resync = false;  // a FullStateRequest: the world's state goes next
+  };
+  RelayLog relay_log_;
+  bool relay_attached_ = false;
+  std::map<std::uint32_t, RelayCursor> relay_cursors_;
 
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;
   std::uint32_t next_client_id_ = 1;  // see client_ids.h
@@ -125,7 +145,7 @@ class Server::Impl final : public SessionHost {
   Handshake handshake_;
   StragglerWatch stragglers_;
   std::set<std::uint32_t> told_clamped_;  // players already told of a clamped input
-  std::chrono::steady_clock::time_point next_lockstep_due_{};  // Pace::Realtime
+  std::chrono::steady_clock::time_point next_lockstep_due_{};                // Pace::Realtime
   std::optional<std::chrono::steady_clock::time_point> last_lockstep_step_;  // Pace::Asap
   InputTiming input_timing_;
   std::chrono::steady_clock::duration tick_period_{};

@@ -55,7 +55,8 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
     case Kind::kBye:
       if (log_admits("bye", session.address())) {
         log_with(spdlog::level::info,
-                 {.client = session.id(), .address = session.peer(),
+                 {.client = session.id(),
+                  .address = session.peer(),
                   .reason = to_string(DropReason::ClientBye)},
                  "client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
       }
@@ -102,7 +103,12 @@ void Server::Impl::on_full_state_request(Session& session) {
         false));
     return;
   }
-  if (feeds_.request_full_state(session.id()) == FullStateResult::Accepted) return;
+  if (feeds_.request_full_state(session.id()) == FullStateResult::Accepted) {
+    if (const auto relay = relay_cursors_.find(session.id()); relay != relay_cursors_.end()) {
+      relay->second.resync = true;
+    }
+    return;
+  }
   update_stats([](ServerStats& s) { ++s.rate_limited; });
   session.send(wire::make_error(physics::wire::ERROR_RATE_LIMITED,
                                 "a full state is already on its way to this client; the "

@@ -211,6 +211,10 @@ void Server::Impl::broadcast(const TruthFrame& frame) {
     // Held by a copy: a session that turns out too slow closes, and leaves the map.
     const std::shared_ptr<Session> session = it->second;
     if (session->closing()) continue;
+    if (const auto relay = relay_cursors_.find(out.client); relay != relay_cursors_.end()) {
+      const std::uint32_t interval = feeds_.hash_interval(out.client);
+      out.tail += relay_bytes(relay->second, out.tick, interval);
+    }
     if (out.full) session->spend_full_state(out.shared->size() + out.tail.size());
     if (const auto margin = input_timing_.take_least_margin(out.client)) {
       // Appended to the client's own bytes: a second Snapshot message merges into one.
@@ -251,6 +255,22 @@ void Server::Impl::drop_stragglers(const TickResult& result, bool timed_out) {
                                   " consecutive lockstep timeouts (--lockstep-max-timeouts)",
                               DropReason::LockstepStraggler);
   }
+}
+
+std::string Server::Impl::relay_bytes(RelayCursor& cursor, std::uint64_t tick,
+                                      std::uint32_t hash_interval) {
+  physics::wire::Snapshot relay;
+  if (cursor.resync || !relay_log_.holds_after(cursor.after_tick)) {
+    // The world after `tick` replaces every tick the client has not been sent.
+    const std::vector<std::uint8_t> bytes = simulation_.world().to_bytes();
+    relay.set_world_state(bytes.data(), bytes.size());
+    cursor = {tick, relay_log_.next_change(), false};
+    update_stats([](ServerStats& s) { ++s.relay_resyncs; });
+  } else {
+    relay_log_.append(cursor.after_tick, tick, cursor.first_change, hash_interval, relay);
+    cursor.after_tick = tick;
+  }
+  return relay.SerializeAsString();
 }
 
 }  // namespace server

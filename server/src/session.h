@@ -94,6 +94,9 @@ class Session : public std::enable_shared_from_this<Session> {
   std::uint32_t id() const { return id_; }
   const std::string& peer() const { return peer_; }
   bool joined() const { return joined_; }
+  // Hello.want_world: its Welcome carries the world's state.
+  bool wants_world() const { return wants_world_; }
+  void set_wants_world(bool wants) { wants_world_ = wants; }
   void set_joined(std::string name) {
     joined_ = true;
     name_ = std::move(name);
@@ -176,7 +179,8 @@ class Session : public std::enable_shared_from_this<Session> {
   bool joined_ = false;
   bool closing_ = false;
   bool closed_ = false;
-  bool announced_closing_ = false;  // host_.on_closing has been called
+  bool announced_closing_ = false;
+  bool wants_world_ = false;  // host_.on_closing has been called
   DropReason close_reason_ = DropReason::Disconnected;
   clock::time_point accepted_;
   clock::time_point last_received_;

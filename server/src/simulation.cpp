@@ -4,6 +4,8 @@
 #include <string>
 #include <utility>
 
+#include "server/relay_log.h"
+
 namespace server {
 namespace {
 
@@ -27,8 +29,10 @@ Simulation::Simulation(scene::SceneDef scene, SimulationOptions options)
       world_(scene::build_world(scene_)) {}
 
 std::optional<phys::BodyId> Simulation::join(ClientId client, std::optional<std::uint32_t> seat) {
-  const std::optional<phys::BodyId> body = room_.join(client, scene_, world_, seat);
+  phys::BodyDef made;
+  const std::optional<phys::BodyId> body = room_.join(client, scene_, world_, seat, &made);
   if (body) {
+    if (relay_) relay_->added(*body, made);
     inputs_.emplace(client, ClientInputs{});
     changes_.added.push_back(*body);
     if (recorder_) recorder_->joined(current_tick_, client, *body, seat);
@@ -40,6 +44,7 @@ bool Simulation::leave(ClientId client) {
   const std::optional<phys::BodyId> body = room_.body_of(client);
   if (!body) return false;
   room_.leave(client, world_);
+  if (relay_) relay_->removed(*body);
   if (recorder_) recorder_->left(current_tick_, client);
   inputs_.erase(client);
   // A body added and removed between two snapshots never needs to be announced.
@@ -103,11 +108,21 @@ TickResult Simulation::step_tick() {
     }
     // Only the room knows the client's body: nothing else can be moved from here.
     const std::optional<phys::BodyId> body = room_.body_of(client);
-    if (body) world_.set_acceleration(*body, taken.acceleration);
+    if (body && relay_) {
+      // Relayed only when the body's acceleration changes (it is held otherwise).
+      const phys::Vec2 before = world_.body(*body)->acceleration;
+      world_.set_acceleration(*body, taken.acceleration);
+      if (!(world_.body(*body)->acceleration == before)) {
+        relay_->applied(result.tick, *body, taken.acceleration);
+      }
+    } else if (body) {
+      world_.set_acceleration(*body, taken.acceleration);
+    }
     if (recorder_ && body) recorder_->applied(result.tick, client, taken.acceleration);
   }
   world_.step(dt_);
   if (recorder_) recorder_->stepped(result.tick, world_);
+  if (relay_) relay_->stepped(result.tick, world_.state_hash());
   current_tick_ = result.tick;
   return result;
 }

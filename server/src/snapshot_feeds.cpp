@@ -145,6 +145,11 @@ FullStateResult SnapshotFeeds::request_full_state(FeedClient client) {
 std::string SnapshotFeeds::tail_for(Feed& feed, const ClientFields& fields,
                                     const phys::World& world) {
   physics::wire::Snapshot own;
+  // The input relay sends each added body's whole definition instead.
+  if (feed.settings.encoding == physics::wire::ENCODING_INPUTS) {
+    feed.added.clear();
+    feed.removed.clear();
+  }
   for (const std::uint64_t id : feed.added) {
     if (const auto body = world.body(phys::BodyId::from_packed(id))) {
       fill_body_shape(*body, *own.add_added());

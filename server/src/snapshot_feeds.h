@@ -101,6 +101,11 @@ class SnapshotFeeds {
   std::size_t view_count() const { return views_.size(); }
   std::size_t view_members(FeedClient client) const;
   const View* view_of(FeedClient client) const;
+  // The client's view_hash_interval (0 for a client without a feed).
+  std::uint32_t hash_interval(FeedClient client) const {
+    const auto it = feeds_.find(client);
+    return it == feeds_.end() ? 0 : it->second.settings.view_hash_interval;
+  }
   const FeedStats& stats() const { return stats_; }
 
  private:

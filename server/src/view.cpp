@@ -200,6 +200,13 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
     delta_ = std::make_shared<const std::string>(message_.SerializeAsString());
     return;
   }
+  if (settings_.encoding == physics::wire::ENCODING_INPUTS) {
+    // No body records: the server appends the relayed ticks to each client's own
+    // bytes. Every tick is news, since the client steps its world by them.
+    delta_has_news_ = true;
+    delta_ = std::make_shared<const std::string>(message_.SerializeAsString());
+    return;
+  }
   const bool exact = settings_.encoding == physics::wire::ENCODING_EXACT;
   if (reset) mirror_.clear();
   if (mirror_.started()) mirror_.advance_to(frame.tick, predictor_);
@@ -372,7 +379,10 @@ bool View::hash_due(bool full) {
 }
 
 const std::shared_ptr<const std::string>& View::full_state() {
-  if (settings_.encoding == physics::wire::ENCODING_FULL) return delta_;
+  if (settings_.encoding == physics::wire::ENCODING_FULL ||
+      settings_.encoding == physics::wire::ENCODING_INPUTS) {
+    return delta_;
+  }
   if (full_state_) return full_state_;
   physics::wire::Snapshot full;
   full.set_tick(last_tick_);

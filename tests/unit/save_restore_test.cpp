@@ -4,7 +4,11 @@
 // (bodies added and removed, contact events switched) goes back exactly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
+#include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -155,6 +159,82 @@ TEST(SaveRestore, CountersKeepCountingAcrossARestore) {
   // A fresh World from a save starts its counters at zero.
   World fresh(saved);
   EXPECT_EQ(fresh.counters().steps, 0u);
+}
+
+// Bytes that are not a world this core wrote: each refused with a reason, never a
+// crash, never a world that steps on garbage.
+TEST(WorldBytes, EveryDamagedFormIsRefusedWithAReason) {
+  World world = world_of(scenes::pile_scene(100));
+  world.set_contact_events(true);
+  for (int i = 0; i < 30; ++i) world.step(kDt);
+  const std::vector<std::uint8_t> good = world.to_bytes();
+  std::string error;
+  ASSERT_TRUE(World::from_bytes(good, &error).has_value()) << error;
+
+  // Cut short anywhere: at every length up to the whole.
+  std::size_t refused = 0;
+  const std::size_t stride = std::max<std::size_t>(1, good.size() / 2000);
+  for (std::size_t n = 0; n < good.size(); n += stride) {
+    error.clear();
+    const auto cut = World::from_bytes(std::span(good.data(), n), &error);
+    EXPECT_FALSE(cut.has_value()) << n << " bytes";
+    EXPECT_FALSE(error.empty());
+    ++refused;
+  }
+  EXPECT_GT(refused, 100u);
+
+  const auto refused_because = [](std::vector<std::uint8_t> bytes) {
+    std::string why;
+    const auto loaded = World::from_bytes(bytes, &why);
+    return loaded.has_value() ? std::string("accepted") : why;
+  };
+  std::vector<std::uint8_t> bytes = good;
+  bytes[0] = 'q';
+  EXPECT_NE(refused_because(bytes).find("tag"), std::string::npos);
+  bytes = good;
+  bytes[8] = 2;  // version
+  EXPECT_NE(refused_because(bytes).find("version 2"), std::string::npos);
+  bytes = good;
+  bytes.push_back(0);
+  EXPECT_NE(refused_because(bytes).find("left over"), std::string::npos);
+  // The body count (after the tag, the version, the settings and the step count)
+  // made huge: refused before anything is allocated for it.
+  bytes = good;
+  const std::size_t settings_bytes =
+      16 + 1 + 4 + 8 + 4 + 4 + 4 + 8 * 3 + 1 + 8 * 2 + 1 + 32 + 8 + 4 + 3;
+  const std::size_t count_at = 8 + 4 + settings_bytes + 8;
+  std::uint64_t count = 0;
+  std::memcpy(&count, bytes.data() + count_at, 8);
+  ASSERT_EQ(count, world.bodies().size()) << "the body count's place in the bytes";
+  count = UINT64_MAX / 2;
+  std::memcpy(bytes.data() + count_at, &count, 8);
+  EXPECT_NE(refused_because(bytes).find("longer than the bytes left"), std::string::npos);
+  // A flag that is neither 0 nor 1 (the first body's `alive`).
+  bytes = good;
+  const std::size_t alive_at = count_at + 8 + 4 * 16 + 2 * 8 + 2;
+  ASSERT_EQ(bytes[alive_at], 1);
+  bytes[alive_at] = 7;
+  EXPECT_NE(refused_because(bytes).find("neither 0 nor 1"), std::string::npos);
+  // A non-finite position.
+  bytes = good;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::memcpy(bytes.data() + count_at + 8, &nan, 8);
+  EXPECT_NE(refused_because(bytes).find("non-finite"), std::string::npos);
+  // Random bytes flipped anywhere: refused, or a world whose bytes are read back as
+  // they were (never a crash: AddressSanitizer runs this suite too).
+  std::uint64_t seed = 12345;
+  for (int trial = 0; trial < 300; ++trial) {
+    bytes = good;
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    bytes[(seed >> 33) % bytes.size()] ^= static_cast<std::uint8_t>(1u << ((seed >> 20) % 8));
+    std::string why;
+    const auto loaded = World::from_bytes(bytes, &why);
+    if (loaded) {
+      EXPECT_EQ(loaded->to_bytes(), bytes);
+    } else {
+      EXPECT_FALSE(why.empty());
+    }
+  }
 }
 
 }  // namespace

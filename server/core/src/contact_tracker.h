@@ -33,6 +33,10 @@ class ContactTracker {
 
   const std::vector<ContactEvent>& events() const { return events_; }
   std::size_t contact_count() const { return current_.size(); }
+  // Walks what carries over between steps, for World::to_bytes and from_bytes
+  // (world_bytes.cpp, the only user).
+  template <class A>
+  void state_fields(A& a);
   // Heap bytes of what carries over between steps (World::save copies it).
   std::size_t state_bytes() const {
     return current_.capacity() * sizeof(Contacting) + stepped_.capacity() * sizeof(std::uint64_t);

@@ -3,6 +3,7 @@
 // generation); the step works on dense lists of slot indices rebuilt when bodies
 // are added, removed, fall asleep or wake.
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -164,6 +165,9 @@ class WorldImpl {
 
  private:
   friend class World;
+  template <class A>
+  friend void state_fields(A& a, WorldImpl& w);  // world_bytes.cpp
+  friend std::string check_read_state(const WorldImpl& w);
 
   BodyDefError check(const BodyDef& def) const;
   // body_lists.cpp: the lists above, after bodies fell asleep, woke, or were

@@ -19,9 +19,11 @@ class Room {
   // Adds the client's body (the scene's player template at a free spawn position).
   // nullopt when the client is already in, or no spawn position is free.
   // `seat`: see find_spawn_position.
+  // `made`, when given, receives the definition the body was added with.
   std::optional<phys::BodyId> join(ClientId client, const scene::SceneDef& scene,
                                    phys::World& world,
-                                   std::optional<std::uint32_t> seat = std::nullopt);
+                                   std::optional<std::uint32_t> seat = std::nullopt,
+                                   phys::BodyDef* made = nullptr);
   // Removes the client's body; false when the client was not in the room.
   bool leave(ClientId client, phys::World& world);
 

@@ -247,6 +247,7 @@ struct ServerStats {
   std::uint64_t snapshots_sent = 0;
   std::uint64_t snapshot_records = 0;  // body records in the snapshots sent
   std::uint64_t full_states = 0;       // full states sent (joins and requests)
+  std::uint64_t relay_resyncs = 0;     // input-relay clients sent the world state again
   std::uint64_t view_updates = 0;      // encodings made: one per view per due tick
   std::size_t views = 0;               // views now (clients with equal views share one)
   std::uint64_t invalid_acks = 0;

@@ -18,6 +18,8 @@
 
 namespace server {
 
+class RelayLog;
+
 struct SimulationOptions {
   // Ticks per second; 0 takes the scene's. dt = 1 / tick_rate.
   double tick_rate = 0.0;
@@ -64,6 +66,11 @@ class Simulation {
   void record_to(std::unique_ptr<TickRecorder> recorder) { recorder_ = std::move(recorder); }
   TickRecorder* recorder() const { return recorder_.get(); }
 
+  // From now on, bodies added and removed, accelerations changed and each tick's
+  // state hash go to `relay` too (relay_log.h), which must outlive this or be
+  // detached with nullptr. Changes no result; costs a state hash per tick.
+  void relay_to(RelayLog* relay) { relay_ = relay; }
+
   // For the lockstep gate: about the next tick (current_tick() + 1).
   bool all_inputs_present() const;
   bool any_input_present() const;
@@ -99,6 +106,7 @@ class Simulation {
   std::uint64_t current_tick_ = 0;
   BodyChanges changes_;
   std::unique_ptr<TickRecorder> recorder_;
+  RelayLog* relay_ = nullptr;
 };
 
 }  // namespace server

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "physics/world.h"
@@ -43,7 +45,18 @@ inline void expect_restore_replays(World& world, int steps, double dt) {
   World fresh(saved);
   EXPECT_EQ(fresh.state_hash(), saved_hash);
   EXPECT_EQ(fresh.body_count(), world.body_count());
+  const std::vector<std::uint8_t> bytes = fresh.to_bytes();
   EXPECT_EQ(hashes_of_steps(fresh, steps, dt), first) << "a fresh World from the saved state";
+
+  // The same state through bytes (World::to_bytes, World::from_bytes), as a client
+  // in another process gets it.
+  std::string error;
+  std::optional<World> loaded = World::from_bytes(bytes, &error);
+  ASSERT_TRUE(loaded.has_value()) << error;
+  EXPECT_EQ(loaded->to_bytes(), bytes) << "read and written again, the bytes are the same";
+  EXPECT_EQ(loaded->state_hash(), saved_hash);
+  EXPECT_EQ(loaded->step_count(), saved.step_count());
+  EXPECT_EQ(hashes_of_steps(*loaded, steps, dt), first) << "a World read from the bytes";
 }
 
 }  // namespace phys::testing

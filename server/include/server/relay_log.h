@@ -1,0 +1,60 @@
+#pragma once
+// The input relay (ENCODING_INPUTS, docs/PROTOCOL.md "Running the world"): what the
+// Simulation did in each tick, as a client that runs the same world needs it. Bodies
+// added (with their full definition) and removed since the previous tick, in order;
+// the accelerations set before the step that changed a body's acceleration; the
+// state hash after it. The Simulation reports to it (Simulation::relay_to); the
+// server copies the ticks each relay client has not been sent into its snapshots.
+//
+// It keeps the last `keep_ticks` ticks: a client further behind is sent the world's
+// state again instead. Each change has a sequence number, so that a client whose
+// Welcome carried the world as it was in the middle of a tick's changes is sent
+// only the changes after it.
+#include <cstdint>
+#include <deque>
+
+#include "physics/body.h"
+#include "wire.pb.h"
+
+namespace server {
+
+class RelayLog {
+ public:
+  explicit RelayLog(std::size_t keep_ticks = 600);
+
+  // Reported by the Simulation, in the order they happen.
+  void added(phys::BodyId id, const phys::BodyDef& def);
+  void removed(phys::BodyId id);
+  // Before tick `tick` is stepped: a body's acceleration changed to `acceleration`
+  // (the value given to World::set_acceleration).
+  void applied(std::uint64_t tick, phys::BodyId body, phys::Vec2 acceleration);
+  void stepped(std::uint64_t tick, std::uint64_t state_hash);
+
+  // The sequence number the next change will get.
+  std::uint64_t next_change() const { return next_change_; }
+  // Whether the ticks after `after_tick` up to the last stepped are all held.
+  bool holds_after(std::uint64_t after_tick) const;
+  // Appends to `out` the ticks after `after_tick` up to `up_to`, leaving out changes
+  // numbered below `first_change`; each tick that is a multiple of `hash_interval`
+  // carries its state hash. holds_after(after_tick) must be true.
+  void append(std::uint64_t after_tick, std::uint64_t up_to, std::uint64_t first_change,
+              std::uint32_t hash_interval, physics::wire::Snapshot& out) const;
+
+  std::size_t ticks_held() const { return ticks_.size(); }
+
+ private:
+  struct Tick {
+    physics::wire::RelayTick message;  // without its hash
+    std::uint64_t state_hash = 0;
+    std::uint64_t first_change = 0;  // the sequence number of message.changes(0)
+  };
+  Tick& open_tick();
+
+  std::size_t keep_ticks_;
+  std::deque<Tick> ticks_;  // stepped, oldest first, consecutive
+  Tick open_;               // changes and inputs of the tick not stepped yet
+  bool open_started_ = false;
+  std::uint64_t next_change_ = 0;
+};
+
+}  // namespace server

@@ -1,0 +1,96 @@
+#include "server/relay_log.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace server {
+
+namespace {
+void set_vec2(physics::wire::Vec2& out, phys::Vec2 v) {
+  out.set_x(v.x);
+  out.set_y(v.y);
+}
+}  // namespace
+
+RelayLog::RelayLog(std::size_t keep_ticks) : keep_ticks_(std::max<std::size_t>(keep_ticks, 1)) {}
+
+RelayLog::Tick& RelayLog::open_tick() {
+  if (!open_started_) {
+    open_ = Tick{};
+    open_.first_change = next_change_;
+    open_started_ = true;
+  }
+  return open_;
+}
+
+void RelayLog::added(phys::BodyId id, const phys::BodyDef& def) {
+  physics::wire::RelayBody& body = *open_tick().message.add_changes()->mutable_added();
+  ++next_change_;
+  body.set_body_id(id.packed());
+  body.set_shape(def.shape == phys::Shape::Circle ? physics::wire::SHAPE_CIRCLE
+                                                  : physics::wire::SHAPE_BOX);
+  body.set_radius(def.radius);
+  set_vec2(*body.mutable_half_extents(), def.half_extents);
+  body.set_is_static(def.motion == phys::Motion::Static);
+  set_vec2(*body.mutable_position(), def.position);
+  set_vec2(*body.mutable_velocity(), def.velocity);
+  set_vec2(*body.mutable_acceleration(), def.acceleration);
+  body.set_mass(def.mass);
+  body.set_restitution(def.restitution);
+  set_vec2(*body.mutable_friction(), def.friction);
+  body.set_contact_friction(def.contact_friction);
+}
+
+void RelayLog::removed(phys::BodyId id) {
+  open_tick().message.add_changes()->set_removed(id.packed());
+  ++next_change_;
+}
+
+void RelayLog::applied(std::uint64_t tick, phys::BodyId body, phys::Vec2 acceleration) {
+  Tick& open = open_tick();
+  open.message.set_tick(tick);
+  physics::wire::RelayInput& input = *open.message.add_inputs();
+  input.set_body_id(body.packed());
+  input.set_ax(acceleration.x);
+  input.set_ay(acceleration.y);
+}
+
+void RelayLog::stepped(std::uint64_t tick, std::uint64_t state_hash) {
+  Tick& open = open_tick();
+  open.message.set_tick(tick);
+  open.state_hash = state_hash;
+  ticks_.push_back(std::move(open));
+  open_started_ = false;
+  while (ticks_.size() > keep_ticks_) ticks_.pop_front();
+}
+
+bool RelayLog::holds_after(std::uint64_t after_tick) const {
+  if (ticks_.empty()) return true;  // nothing stepped yet: nothing to send
+  if (after_tick >= ticks_.back().message.tick()) return true;
+  return ticks_.front().message.tick() <= after_tick + 1;
+}
+
+void RelayLog::append(std::uint64_t after_tick, std::uint64_t up_to, std::uint64_t first_change,
+                      std::uint32_t hash_interval, physics::wire::Snapshot& out) const {
+  assert(holds_after(after_tick));
+  if (ticks_.empty() || after_tick >= up_to) return;
+  const std::uint64_t oldest = ticks_.front().message.tick();
+  for (std::size_t i = after_tick + 1 - oldest; i < ticks_.size(); ++i) {
+    const Tick& t = ticks_[i];
+    if (t.message.tick() > up_to) break;
+    physics::wire::RelayTick& copy = *out.add_relay();
+    copy.set_tick(t.message.tick());
+    // Changes the client's world already holds (numbered below first_change) are
+    // left out; they are always the first ones of their tick.
+    for (int c = 0; c < t.message.changes_size(); ++c) {
+      if (t.first_change + static_cast<std::uint64_t>(c) < first_change) continue;
+      *copy.add_changes() = t.message.changes(c);
+    }
+    *copy.mutable_inputs() = t.message.inputs();
+    if (hash_interval > 0 && t.message.tick() % hash_interval == 0) {
+      copy.set_state_hash(t.state_hash);
+    }
+  }
+}
+
+}  // namespace server

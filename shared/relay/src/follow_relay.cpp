@@ -1,0 +1,88 @@
+#include "relay/follow_relay.h"
+
+#include <cmath>
+
+namespace relay {
+namespace {
+phys::Vec2 vec(const physics::wire::Vec2& v) { return {v.x(), v.y()}; }
+std::string id_text(std::uint64_t id) {
+  const phys::BodyId body = phys::BodyId::from_packed(id);
+  return std::to_string(body.index) + "/" + std::to_string(body.generation);
+}
+}  // namespace
+
+phys::BodyDef body_def(const physics::wire::RelayBody& body) {
+  phys::BodyDef def;
+  def.shape = body.shape() == physics::wire::SHAPE_CIRCLE ? phys::Shape::Circle : phys::Shape::Box;
+  def.motion = body.is_static() ? phys::Motion::Static : phys::Motion::Dynamic;
+  def.position = vec(body.position());
+  def.velocity = vec(body.velocity());
+  def.acceleration = vec(body.acceleration());
+  def.radius = body.radius();
+  def.half_extents = vec(body.half_extents());
+  def.mass = body.mass();
+  def.restitution = body.restitution();
+  def.friction = vec(body.friction());
+  def.contact_friction = body.contact_friction();
+  return def;
+}
+
+FollowResult apply_changes_and_inputs(phys::World& world, const physics::wire::RelayTick& tick) {
+  FollowResult result;
+  for (const physics::wire::RelayChange& change : tick.changes()) {
+    if (change.has_added()) {
+      const std::uint64_t expected = change.added().body_id();
+      if (world.contains(phys::BodyId::from_packed(expected))) {
+        result.problem = FollowProblem::BodyMismatch;
+        result.detail = "tick " + std::to_string(tick.tick()) + " adds body " + id_text(expected) +
+                        ", which the world holds already";
+        return result;
+      }
+      const phys::BodyId got = world.add_body(body_def(change.added()));
+      if (got.packed() != expected) {
+        result.problem = FollowProblem::BodyMismatch;
+        result.detail = "tick " + std::to_string(tick.tick()) + " adds body " + id_text(expected) +
+                        "; the world gave it " +
+                        (got.is_valid() ? id_text(got.packed()) : std::string("no id (refused)"));
+        return result;
+      }
+    } else if (!world.remove_body(phys::BodyId::from_packed(change.removed()))) {
+      result.problem = FollowProblem::BodyMismatch;
+      result.detail = "tick " + std::to_string(tick.tick()) + " removes body " +
+                      id_text(change.removed()) + ", which the world does not hold";
+      return result;
+    }
+  }
+  for (const physics::wire::RelayInput& input : tick.inputs()) {
+    if (!world.set_acceleration(phys::BodyId::from_packed(input.body_id()),
+                                {input.ax(), input.ay()})) {
+      result.problem = FollowProblem::BadInput;
+      result.detail = "tick " + std::to_string(tick.tick()) + " sets the acceleration of body " +
+                      id_text(input.body_id()) +
+                      ", which the world does not hold as a dynamic body, or not to a finite value";
+      return result;
+    }
+  }
+  return result;
+}
+
+FollowResult follow(phys::World& world, const physics::wire::RelayTick& tick, double dt) {
+  FollowResult result = apply_changes_and_inputs(world, tick);
+  if (result.problem != FollowProblem::None) return result;
+  world.step(dt);
+  if (tick.has_state_hash()) {
+    result.hash_checked = true;
+    if (world.state_hash() != tick.state_hash()) {
+      result.problem = FollowProblem::HashMismatch;
+      result.detail = "after tick " + std::to_string(tick.tick()) + " the world's hash differs";
+    }
+  }
+  return result;
+}
+
+std::optional<phys::World> world_from(const std::string& bytes, std::string* error) {
+  return phys::World::from_bytes(
+      std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), error);
+}
+
+}  // namespace relay
