@@ -21,7 +21,7 @@ results="$here/results"
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
-      rain-position-passes det-math-comparison wasm-speed)
+      rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -52,6 +52,8 @@ declare -A writes=(
   [rain-position-passes]="accuracy-rain-position-passes.csv"
   [det-math-comparison]="core-comparison-det-math.csv"
   [wasm-speed]="wasm-speed.csv"
+  [save-restore]="save-restore.json"
+  [relay-bandwidth]="netbench-relay.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
     netbench-pyramid-one-driver.csv"
@@ -187,6 +189,18 @@ run_micro() {
   [[ -x "$micro" ]] || { echo "run-report: $micro not built (ninja -C $build physics-microbench)" >&2; return 1; }
   "$micro" --benchmark_filter='StepPile|Collide|Intersect|Grid|Brute' --benchmark_min_time=0.5 \
     --benchmark_out="$out/benchmarks-micro.json" --benchmark_out_format=json
+}
+run_save-restore() {  # the world's saved state: save, restore, bytes (about a minute)
+  local micro="$build/bench/physics-microbench"
+  [[ -x "$micro" ]] || { echo "run-report: $micro not built (ninja -C $build physics-microbench)" >&2; return 1; }
+  "$micro" --benchmark_filter='SaveInto|Restore|ToBytes|FromBytes|StepForScale' \
+    --benchmark_min_time=0.2 --benchmark_out="$out/save-restore.json" --benchmark_out_format=json
+}
+run_relay-bandwidth() {  # 8 players, the input relay beside the snapshot encodings (about 2 minutes)
+  local netbench="$build/bench/physics-netbench"
+  [[ -x "$netbench" ]] || { echo "run-report: $netbench not built" >&2; return 1; }
+  "$netbench" --scenes scenes/moving-1000.textproto,scenes/large-4000.textproto --bots 8 \
+    --encodings inputs,predicted --duration 5 --warmup 1 --csv "$out/netbench-relay.csv"
 }
 run_netbench() { BUILD_DIR="$build" "$here/run-netbench.sh"; }
 run_net-paths() {  # lockstep and fixed rate through the link conditioner (about 8 minutes)

@@ -72,6 +72,8 @@ bool parse_encoding(const std::string& name, client::Encoding& out) {
     out = client::Encoding::Exact;
   else if (name == "full")
     out = client::Encoding::Full;
+  else if (name == "inputs")
+    out = client::Encoding::Inputs;
   else
     return false;
   return true;
@@ -106,10 +108,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000));
   app.add_option("--encodings", encodings,
                  "Snapshot encodings: full (every body, exact), "
-                 "predicted (quantised against the prediction), exact (changed bodies, exact)")
+                 "predicted (quantised against the prediction), exact (changed bodies, exact), "
+                 "inputs (the input relay, no bodies: docs/PROTOCOL.md 5.12)")
       ->capture_default_str()
       ->delimiter(',')
-      ->check(CLI::IsMember({"full", "predicted", "exact"}));
+      ->check(CLI::IsMember({"full", "predicted", "exact", "inputs"}));
   app.add_option("--duration", duration, "Seconds measured per run")
       ->capture_default_str()
       ->check(CLI::Range(0.1, 3600.0));
@@ -251,6 +254,7 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
         load.client.port = server.port();
         load.client.name = "netbench";
         load.client.view.encoding = encoding;
+        load.client.want_world = encoding == client::Encoding::Inputs;
         load.bots = bots;
         load.still = still;
         load.settle = std::chrono::milliseconds(static_cast<long>(settle * 1000.0));

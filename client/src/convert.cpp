@@ -36,6 +36,7 @@ static_assert(static_cast<int>(ErrorCode::LockstepStraggler) == pb::ERROR_LOCKST
 static_assert(static_cast<int>(ErrorCode::InvalidSubscription) == pb::ERROR_INVALID_SUBSCRIPTION);
 static_assert(kProtocolVersion == pb::PROTOCOL_VERSION_CURRENT);
 static_assert(static_cast<int>(Encoding::Full) == pb::ENCODING_FULL);
+static_assert(static_cast<int>(Encoding::Inputs) == pb::ENCODING_INPUTS);
 
 }  // namespace
 
@@ -160,6 +161,7 @@ pb::ClientMessage make_hello(const ClientConfig& config) {
   options.protocol_version = config.protocol_version;
   options.view = to_wire(config.view);
   options.spectate = config.spectate;
+  options.want_world = config.want_world;
   options.seat = config.seat;
   if (config.contacts) {
     pb::ContactSubscription& contacts = options.contacts.emplace();

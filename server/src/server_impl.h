@@ -86,6 +86,13 @@ class Server::Impl final : public SessionHost {
   void on_input(Session& session, const physics::wire::Input& input);
   void on_ack(Session& session, const physics::wire::Ack& ack);
   void on_full_state_request(Session& session);
+  // Each relay client's place in it: the last tick it was sent, and the first change
+  // its world does not hold yet.
+  struct RelayCursor {
+    std::uint64_t after_tick = 0;
+    std::uint64_t first_change = 0;
+    bool resync = false;  // a FullStateRequest: the world's state goes next
+  };
   // With Hello.want_world: the world's state in the Welcome, and the client's place
   // in the relay when its view is ENCODING_INPUTS.
   void give_world(Session& session, const wire::ViewSettings& view,
@@ -122,13 +129,6 @@ class Server::Impl final : public SessionHost {
   TruthFrame previous_frame_;
   // The input relay (relay_log.h): attached to the simulation when the first client
   // asks for the world, so that a server without such clients pays nothing for it.
-  // Each relay client's place in it: the last tick it was sent, and the first change
-  // its world does not hold yet.
-  struct RelayCursor {
-    std::uint64_t after_tick = 0;
-    std::uint64_t first_change = 0;
-    bool resync = false;  // a FullStateRequest: the world's state goes next
-  };
   RelayLog relay_log_;
   bool relay_attached_ = false;
   std::map<std::uint32_t, RelayCursor> relay_cursors_;

@@ -109,8 +109,9 @@ TEST(RelayView, AFollowerHoldsTheServersWorldThroughAPath) {
     ASSERT_TRUE(follower.apply(s)) << follower.problem;
     ASSERT_TRUE(peer.send(ack(s.tick())));
     // Its own input changes every 20 ticks; another player joins and leaves.
-    if (n % 20 == 0)
+    if (n % 20 == 0) {
       ASSERT_TRUE(peer.send(input_message(s.tick() + 4, (n % 40) ? 8.0 : -8.0, 3.0)));
+    }
     if (n == 60) {
       other = std::make_unique<RawPeer>(server.port());
       ASSERT_TRUE(other->send(hello_message("other")));

@@ -82,7 +82,7 @@ TEST_P(SaveRestoreLibrary, WithContactEventsTheSameEventsFollow) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SaveRestoreLibrary, ::testing::ValuesIn(library_scenes()),
-                         [](const auto& info) { return info.param.label; });
+                         [](const auto& param_info) { return param_info.param.label; });
 
 TEST(SaveRestore, AWorldChangedSinceTheSaveGoesBackExactly) {
   World world = world_of(scenes::pile_scene(1000));
@@ -97,7 +97,7 @@ TEST(SaveRestore, AWorldChangedSinceTheSaveGoesBackExactly) {
   ASSERT_TRUE(world.remove_body(at_save[10].id));
   ASSERT_TRUE(world.remove_body(at_save[500].id));
   const BodyId added = world.add_body(circle_def({0.0, 40.0}, 0.5));
-  ASSERT_TRUE(added.valid());
+  ASSERT_TRUE(added.is_valid());
   ASSERT_TRUE(world.set_position(at_save[700].id, {3.0, 30.0}));
   ASSERT_TRUE(world.set_velocity(at_save[800].id, {-4.0, 2.0}));
   world.set_contact_events(true);

@@ -52,6 +52,10 @@ enum class Encoding : std::uint8_t {
   Predicted = 0,  // quantised, only bodies that left the prediction (the default)
   Exact = 1,      // exact doubles, only bodies that changed at all
   Full = 2,       // exact doubles, every dynamic body in every snapshot
+  // No bodies: the inputs the server applied (docs/PROTOCOL.md 5.12), for a client
+  // that runs the world (ClientConfig::want_world). This client library reads no
+  // bodies from it; the predicting client follows it.
+  Inputs = 3,
 };
 
 struct Rect {

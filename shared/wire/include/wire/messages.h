@@ -24,6 +24,7 @@ struct HelloOptions {
   // same, so a plain Hello is the bytes of docs/PROTOCOL.md's example.
   physics::wire::ViewRequest view;
   bool spectate = false;
+  bool want_world = false;            // Hello.want_world (docs/PROTOCOL.md 5.12)
   std::optional<std::uint32_t> seat;  // absent: the lowest free seat
   // Sent whenever set, even empty: an empty subscription is a player's own contacts,
   // an absent one is none.
