@@ -255,6 +255,8 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
         load.client.name = "netbench";
         load.client.view.encoding = encoding;
         load.client.want_world = encoding == client::Encoding::Inputs;
+        // The world's state in the Welcome: about 300 bytes a body.
+        if (load.client.want_world) load.client.max_message_bytes = std::size_t{64} << 20;
         load.bots = bots;
         load.still = still;
         load.settle = std::chrono::milliseconds(static_cast<long>(settle * 1000.0));

@@ -36,6 +36,8 @@ const char* encoding_name(client::Encoding encoding) {
       return "full";
     case client::Encoding::Exact:
       return "exact";
+    case client::Encoding::Inputs:
+      return "inputs";
     case client::Encoding::Predicted:
       break;
   }

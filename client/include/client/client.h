@@ -47,8 +47,9 @@ struct ClientConfig {
   ViewRequest view;
   // Watch without a body (Hello.spectate): Welcome::spectator, no own body.
   bool spectate = false;
-  // Hello.want_world: the Welcome carries the world's state (Welcome::world_state),
-  // for a client that runs the world; Encoding::Inputs needs it.
+  // Hello.want_world: the Welcome carries the world's state, for a client that runs
+  // the world; Encoding::Inputs needs it. That Welcome holds some 300 bytes a body:
+  // raise max_message_bytes for worlds over about 3,000 bodies.
   bool want_world = false;
   // The seat to play in (Hello.seat): with the same seats, a lockstep run gives the
   // same bodies whatever order the clients connect in. Unset: the lowest free seat.
