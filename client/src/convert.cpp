@@ -34,6 +34,7 @@ static_assert(static_cast<int>(ErrorCode::SeatOutOfRange) == pb::ERROR_SEAT_OUT_
 static_assert(static_cast<int>(ErrorCode::InputClamped) == pb::ERROR_INPUT_CLAMPED);
 static_assert(static_cast<int>(ErrorCode::LockstepStraggler) == pb::ERROR_LOCKSTEP_STRAGGLER);
 static_assert(static_cast<int>(ErrorCode::InvalidSubscription) == pb::ERROR_INVALID_SUBSCRIPTION);
+static_assert(static_cast<int>(ErrorCode::RefusedByGame) == pb::ERROR_REFUSED_BY_GAME);
 static_assert(kProtocolVersion == pb::PROTOCOL_VERSION_CURRENT);
 static_assert(static_cast<int>(Encoding::Full) == pb::ENCODING_FULL);
 static_assert(static_cast<int>(Encoding::Inputs) == pb::ENCODING_INPUTS);
@@ -139,7 +140,7 @@ pb::ViewRequest to_wire(const ViewRequest& request) {
 ServerError from_wire(const pb::Error& message) {
   ServerError error;
   error.raw_code = static_cast<std::uint32_t>(message.code());
-  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::InvalidSubscription)
+  error.code = error.raw_code <= static_cast<std::uint32_t>(ErrorCode::RefusedByGame)
                    ? static_cast<ErrorCode>(error.raw_code)
                    : ErrorCode::Unspecified;
   error.message = message.message();

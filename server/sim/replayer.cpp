@@ -25,20 +25,24 @@ std::string describe_body(std::uint64_t packed) {
 
 }  // namespace
 
-Replayer::Opened Replayer::open(const std::filesystem::path& path) {
+Replayer::Opened Replayer::open(const std::filesystem::path& path,
+                                std::shared_ptr<server::GameRules> rules) {
   recording::RecordingReader::Opened opened = recording::RecordingReader::open(path);
   if (auto* error = std::get_if<recording::RecordingError>(&opened)) return *error;
-  return from_reader(std::get<std::unique_ptr<recording::RecordingReader>>(std::move(opened)));
+  return from_reader(std::get<std::unique_ptr<recording::RecordingReader>>(std::move(opened)),
+                     std::move(rules));
 }
 
-Replayer::Opened Replayer::from_bytes(std::string bytes) {
+Replayer::Opened Replayer::from_bytes(std::string bytes, std::shared_ptr<server::GameRules> rules) {
   recording::RecordingReader::Opened opened =
       recording::RecordingReader::from_bytes(std::move(bytes));
   if (auto* error = std::get_if<recording::RecordingError>(&opened)) return *error;
-  return from_reader(std::get<std::unique_ptr<recording::RecordingReader>>(std::move(opened)));
+  return from_reader(std::get<std::unique_ptr<recording::RecordingReader>>(std::move(opened)),
+                     std::move(rules));
 }
 
-Replayer::Opened Replayer::from_reader(std::unique_ptr<recording::RecordingReader> reader) {
+Replayer::Opened Replayer::from_reader(std::unique_ptr<recording::RecordingReader> reader,
+                                       std::shared_ptr<server::GameRules> rules) {
   const std::uint64_t at = reader->header_offset();
   const auto refuse = [at](std::string message) {
     return recording::RecordingError{at, "header: " + std::move(message)};
@@ -63,8 +67,8 @@ Replayer::Opened Replayer::from_reader(std::unique_ptr<recording::RecordingReade
   options.max_ticks_ahead = run.max_ticks_ahead();
   std::unique_ptr<server::Simulation> simulation;
   try {
-    simulation =
-        std::make_unique<server::Simulation>(std::get<scene::SceneDef>(std::move(scene)), options);
+    simulation = std::make_unique<server::Simulation>(std::get<scene::SceneDef>(std::move(scene)),
+                                                      options, std::move(rules));
   } catch (const std::invalid_argument& error) {
     return refuse(error.what());
   }

@@ -48,10 +48,14 @@ class Replayer {
   using Opened = std::variant<std::unique_ptr<Replayer>, recording::RecordingError>;
   // Reads the header and builds the recorded scene's world; a client recording, a
   // bad scene or bad run settings are refused with the header's offset.
-  static Opened open(const std::filesystem::path& path);
-  static Opened from_bytes(std::string bytes);
+  // `rules`: the game rules the recorded run had (game_rules.h), run again; a run
+  // with rules replayed without them differs at the first tick they changed.
+  static Opened open(const std::filesystem::path& path,
+                     std::shared_ptr<server::GameRules> rules = nullptr);
+  static Opened from_bytes(std::string bytes, std::shared_ptr<server::GameRules> rules = nullptr);
   // Takes an opened reader (the header already read).
-  static Opened from_reader(std::unique_ptr<recording::RecordingReader> reader);
+  static Opened from_reader(std::unique_ptr<recording::RecordingReader> reader,
+                            std::shared_ptr<server::GameRules> rules = nullptr);
 
   enum class Step : std::uint8_t {
     Stepped,  // one tick stepped; last_check() says how it compares

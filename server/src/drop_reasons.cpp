@@ -53,6 +53,8 @@ const char* to_string(DropReason reason) {
       return "address backing off after drops";
     case DropReason::NotReading:
       return "not reading (no snapshot acknowledged)";
+    case DropReason::RefusedByGame:
+      return "refused by the game";
   }
   return "unknown";
 }

@@ -176,14 +176,18 @@ HelloDecision Handshake::decide_player(ClientId client, const physics::wire::Hel
   }
   // Outside a lobby a seat moves the body only when the Hello asked for it, so that
   // clients that name no seat spawn as they always did.
-  const std::optional<phys::BodyId> body = simulation.join(client, wanted);
-  if (!body) {
+  const Admission admitted = simulation.admit(client, wanted);
+  if (!admitted.body) {
     seats_.release(client);
     forget_address(client);
+    if (admitted.refused) {
+      return refuse(std::move(decision), physics::wire::ERROR_REFUSED_BY_GAME,
+                    "refused by the game: " + *admitted.refused, DropReason::RefusedByGame);
+    }
     return refuse(std::move(decision), physics::wire::ERROR_NO_SPAWN,
                   "no free spawn position for another body", DropReason::NoSpawn);
   }
-  decision.body = *body;
+  decision.body = *admitted.body;
   decision.outcome = HelloDecision::Outcome::Player;
   return decision;
 }
@@ -195,14 +199,18 @@ LobbyOpening Handshake::open_lobby(Simulation& simulation) {
     const auto seated = lobby_.find(id);
     if (seated == lobby_.end()) continue;
     const std::uint32_t seat = *seats_.seat_of(id);
-    const std::optional<phys::BodyId> body = simulation.join(id, seat);
-    if (!body) {
+    const Admission admitted = simulation.admit(id, seat);
+    if (!admitted.body) {
       seats_.release(id);
       forget_address(id);
-      opening.no_spawn.push_back(id);
+      if (admitted.refused) {
+        opening.refused.push_back({id, *admitted.refused});
+      } else {
+        opening.no_spawn.push_back(id);
+      }
       continue;
     }
-    opening.welcomed.push_back({id, *body, seat, seated->second});
+    opening.welcomed.push_back({id, *admitted.body, seat, seated->second});
   }
   lobby_.clear();
   return opening;

@@ -73,6 +73,8 @@ struct LobbyOpening {
   std::vector<LobbyWelcome> welcomed;  // in seat order
   // No free spawn position was left for them: refused with ERROR_NO_SPAWN, seats freed.
   std::vector<ClientId> no_spawn;
+  // The game rules refused them (GameRules::on_join): ERROR_REFUSED_BY_GAME, with why.
+  std::vector<std::pair<ClientId, std::string>> refused;
 };
 
 class Handshake {

@@ -23,9 +23,18 @@ RelayLog::Tick& RelayLog::open_tick() {
   return open_;
 }
 
+physics::wire::RelayChange& RelayLog::next_change_slot() {
+  Tick& open = open_tick();
+  if (!phase_) {
+    ++next_change_;  // numbered: a Welcome may fall between two of them
+    return *open.message.add_changes();
+  }
+  return *phase_ == RulesPhase::BeforeStep ? *open.message.add_before_step()
+                                           : *open.message.add_after_step();
+}
+
 void RelayLog::added(phys::BodyId id, const phys::BodyDef& def) {
-  physics::wire::RelayBody& body = *open_tick().message.add_changes()->mutable_added();
-  ++next_change_;
+  physics::wire::RelayBody& body = *next_change_slot().mutable_added();
   body.set_body_id(id.packed());
   body.set_shape(def.shape == phys::Shape::Circle ? physics::wire::SHAPE_CIRCLE
                                                   : physics::wire::SHAPE_BOX);
@@ -41,9 +50,15 @@ void RelayLog::added(phys::BodyId id, const phys::BodyDef& def) {
   body.set_contact_friction(def.contact_friction);
 }
 
-void RelayLog::removed(phys::BodyId id) {
-  open_tick().message.add_changes()->set_removed(id.packed());
-  ++next_change_;
+void RelayLog::removed(phys::BodyId id) { next_change_slot().set_removed(id.packed()); }
+
+void RelayLog::set(phys::BodyId id, std::optional<phys::Vec2> position,
+                   std::optional<phys::Vec2> velocity, std::optional<phys::Vec2> acceleration) {
+  physics::wire::RelaySet& set = *next_change_slot().mutable_set();
+  set.set_body_id(id.packed());
+  if (position) set_vec2(*set.mutable_position(), *position);
+  if (velocity) set_vec2(*set.mutable_velocity(), *velocity);
+  if (acceleration) set_vec2(*set.mutable_acceleration(), *acceleration);
 }
 
 void RelayLog::applied(std::uint64_t tick, phys::BodyId body, phys::Vec2 acceleration) {
@@ -87,6 +102,8 @@ void RelayLog::append(std::uint64_t after_tick, std::uint64_t up_to, std::uint64
       *copy.add_changes() = t.message.changes(c);
     }
     *copy.mutable_inputs() = t.message.inputs();
+    *copy.mutable_before_step() = t.message.before_step();
+    *copy.mutable_after_step() = t.message.after_step();
     if (hash_interval > 0 && t.message.tick() % hash_interval == 0) {
       copy.set_state_hash(t.state_hash);
     }

@@ -22,6 +22,17 @@ std::optional<phys::BodyId> Room::join(ClientId client, const scene::SceneDef& s
   return body;
 }
 
+std::optional<phys::BodyId> Room::join_as(ClientId client, phys::BodyDef def, phys::World& world,
+                                          phys::BodyDef* made) {
+  if (contains(client)) return std::nullopt;
+  def.motion = phys::Motion::Dynamic;
+  const phys::BodyId body = world.add_body(def);
+  if (!body.is_valid()) return std::nullopt;
+  if (made) *made = def;
+  bodies_.emplace(client, body);
+  return body;
+}
+
 bool Room::leave(ClientId client, phys::World& world) {
   const auto it = bodies_.find(client);
   if (it == bodies_.end()) return false;

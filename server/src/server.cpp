@@ -120,7 +120,7 @@ void apply_log_level(const ServerConfig& config) {
 
 Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
     : config_((check_config(config), apply_log_level(config), std::move(config))),
-      simulation_(std::move(scene), simulation_options(config_)),
+      simulation_(std::move(scene), simulation_options(config_), config_.rules),
       acceptor_(io_),
       tick_timer_(io_),
       lockstep_timer_(io_),
@@ -231,6 +231,11 @@ void Server::Impl::run() {
   for (;;) {
     try {
       io_.run();
+      try {
+        simulation_.end();  // the game rules' on_end
+      } catch (const std::exception& error) {
+        spdlog::error("the game rules' on_end failed: {}", error.what());
+      }
       return;
     } catch (const std::exception& error) {
       spdlog::error("a handler failed: {}; serving on", error.what());

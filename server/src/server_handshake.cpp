@@ -114,6 +114,12 @@ void Server::Impl::open_lobby() {
                                         DropReason::NoSpawn);
     }
   }
+  for (const auto& [id, why] : opening.refused) {
+    if (const auto session = sessions_.find(id); session != sessions_.end()) {
+      session->second->close_with_error(physics::wire::ERROR_REFUSED_BY_GAME,
+                                        "refused by the game: " + why, DropReason::RefusedByGame);
+    }
+  }
   std::size_t welcomed = 0;
   for (const LobbyWelcome& player : opening.welcomed) {
     const auto session = sessions_.find(player.client);

@@ -21,43 +21,89 @@ double pick_tick_rate(double requested, const scene::SceneDef& scene) {
 
 }  // namespace
 
-Simulation::Simulation(scene::SceneDef scene, SimulationOptions options)
+Simulation::Simulation(scene::SceneDef scene, SimulationOptions options,
+                       std::shared_ptr<GameRules> rules)
     : scene_(std::move(scene)),
       options_(options),
       tick_rate_(pick_tick_rate(options.tick_rate, scene_)),
       dt_(1.0 / tick_rate_),
-      world_(scene::build_world(scene_)) {}
+      world_(scene::build_world(scene_)),
+      rules_(std::move(rules)) {
+  if (rules_) {
+    set_contact_events(false);
+    GameWorld handle(*this);
+    rules_->on_create(handle);
+    changes_ = {};  // the scene as the rules made it is what every client is welcomed to
+  }
+}
+
+void Simulation::note_added(phys::BodyId body, const phys::BodyDef& def) {
+  changes_.added.push_back(body);
+  if (relay_) relay_->added(body, def);
+}
+
+void Simulation::note_removed(phys::BodyId body) {
+  if (relay_) relay_->removed(body);
+  // A body added and removed between two snapshots never needs to be announced.
+  auto& added = changes_.added;
+  for (auto it = added.begin(); it != added.end(); ++it) {
+    if (*it == body) {
+      added.erase(it);
+      return;
+    }
+  }
+  changes_.removed.push_back(body.packed());
+}
+
+void Simulation::end() {
+  if (ended_ || !rules_) return;
+  ended_ = true;
+  rules_tick_ = current_tick_;
+  GameWorld handle(*this);
+  rules_->on_end(handle);
+}
 
 std::optional<phys::BodyId> Simulation::join(ClientId client, std::optional<std::uint32_t> seat) {
-  phys::BodyDef made;
-  const std::optional<phys::BodyId> body = room_.join(client, scene_, world_, seat, &made);
-  if (body) {
-    if (relay_) relay_->added(*body, made);
-    inputs_.emplace(client, ClientInputs{});
-    changes_.added.push_back(*body);
-    if (recorder_) recorder_->joined(current_tick_, client, *body, seat);
+  return admit(client, seat).body;
+}
+
+Admission Simulation::admit(ClientId client, std::optional<std::uint32_t> seat) {
+  Admission admission;
+  if (room_.contains(client)) return admission;
+  JoinDecision decision;
+  if (rules_) {
+    rules_tick_ = current_tick_;
+    GameWorld handle(*this);
+    decision = rules_->on_join(handle, client, seat);
+    if (decision.refuse) {
+      admission.refused = *decision.refuse;
+      return admission;
+    }
   }
-  return body;
+  phys::BodyDef made;
+  const std::optional<phys::BodyId> body =
+      decision.body ? room_.join_as(client, *decision.body, world_, &made)
+                    : room_.join(client, scene_, world_, seat, &made);
+  if (!body) return admission;
+  inputs_.emplace(client, ClientInputs{});
+  note_added(*body, made);
+  if (recorder_) recorder_->joined(current_tick_, client, *body, seat);
+  admission.body = body;
+  return admission;
 }
 
 bool Simulation::leave(ClientId client) {
   const std::optional<phys::BodyId> body = room_.body_of(client);
   if (!body) return false;
   room_.leave(client, world_);
-  if (relay_) relay_->removed(*body);
   if (recorder_) recorder_->left(current_tick_, client);
   inputs_.erase(client);
-  // A body added and removed between two snapshots never needs to be announced.
-  auto& added = changes_.added;
-  bool was_announced = true;
-  for (auto it = added.begin(); it != added.end(); ++it) {
-    if (*it == *body) {
-      added.erase(it);
-      was_announced = false;
-      break;
-    }
+  note_removed(*body);
+  if (rules_) {
+    rules_tick_ = current_tick_;
+    GameWorld handle(*this);
+    rules_->on_leave(handle, client);
   }
-  if (was_announced) changes_.removed.push_back(body->packed());
   return true;
 }
 
@@ -100,6 +146,7 @@ bool Simulation::any_input_present() const {
 TickResult Simulation::step_tick() {
   TickResult result;
   result.tick = current_tick_ + 1;
+  std::vector<AppliedInput> applied;
   for (auto& [client, inputs] : inputs_) {
     const ClientInputs::Taken taken = inputs.take(result.tick);
     if (!taken.fresh) {
@@ -118,12 +165,27 @@ TickResult Simulation::step_tick() {
     } else if (body) {
       world_.set_acceleration(*body, taken.acceleration);
     }
+    if (body && rules_) applied.push_back({client, *body, taken.acceleration});
     if (recorder_ && body) recorder_->applied(result.tick, client, taken.acceleration);
   }
+  if (rules_) {
+    // The rules' changes before the step: after the inputs, in the relay too.
+    rules_tick_ = result.tick;
+    if (relay_) relay_->begin_rules(RelayLog::RulesPhase::BeforeStep);
+    GameWorld handle(*this);
+    rules_->before_step(handle, applied);
+    if (relay_) relay_->end_rules();
+  }
   world_.step(dt_);
+  current_tick_ = result.tick;
+  if (rules_) {
+    if (relay_) relay_->begin_rules(RelayLog::RulesPhase::AfterStep);
+    GameWorld handle(*this);
+    rules_->after_step(handle);
+    if (relay_) relay_->end_rules();
+  }
   if (recorder_) recorder_->stepped(result.tick, world_);
   if (relay_) relay_->stepped(result.tick, world_.state_hash());
-  current_tick_ = result.tick;
   return result;
 }
 

@@ -202,6 +202,7 @@ enum class ErrorCode : std::uint32_t {
   InputClamped = 18,  // not fatal: said once, at the first clamped input
   LockstepStraggler = 19,
   InvalidSubscription = 21,  // Hello.contacts not allowed as given
+  RefusedByGame = 22,        // the game on the server refused the player; message says why
 };
 
 std::string_view to_string(ErrorCode code);

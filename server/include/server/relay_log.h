@@ -12,6 +12,7 @@
 // only the changes after it.
 #include <cstdint>
 #include <deque>
+#include <optional>
 
 #include "physics/body.h"
 #include "wire.pb.h"
@@ -29,6 +30,14 @@ class RelayLog {
   // (the value given to World::set_acceleration).
   void applied(std::uint64_t tick, phys::BodyId body, phys::Vec2 acceleration);
   void stepped(std::uint64_t tick, std::uint64_t state_hash);
+  // A body moved by game rules (the values given, each when set).
+  void set(phys::BodyId id, std::optional<phys::Vec2> position, std::optional<phys::Vec2> velocity,
+           std::optional<phys::Vec2> acceleration);
+  // Between these, changes go to the open tick's list of the rules' phase
+  // (RelayTick.before_step or after_step) instead of its `changes`.
+  enum class RulesPhase { BeforeStep, AfterStep };
+  void begin_rules(RulesPhase phase) { phase_ = phase; }
+  void end_rules() { phase_.reset(); }
 
   // The sequence number the next change will get.
   std::uint64_t next_change() const { return next_change_; }
@@ -49,11 +58,14 @@ class RelayLog {
     std::uint64_t first_change = 0;  // the sequence number of message.changes(0)
   };
   Tick& open_tick();
+  // Where the next change goes: the open tick's changes, or its rules' phase list.
+  physics::wire::RelayChange& next_change_slot();
 
   std::size_t keep_ticks_;
   std::deque<Tick> ticks_;  // stepped, oldest first, consecutive
   Tick open_;               // changes and inputs of the tick not stepped yet
   bool open_started_ = false;
+  std::optional<RulesPhase> phase_;
   std::uint64_t next_change_ = 0;
 };
 

@@ -24,6 +24,10 @@ class Room {
                                    phys::World& world,
                                    std::optional<std::uint32_t> seat = std::nullopt,
                                    phys::BodyDef* made = nullptr);
+  // Adds the client's body as `def` says (game rules chose it; its motion made
+  // dynamic). nullopt when the client is already in or the world refuses the def.
+  std::optional<phys::BodyId> join_as(ClientId client, phys::BodyDef def, phys::World& world,
+                                      phys::BodyDef* made = nullptr);
   // Removes the client's body; false when the client was not in the room.
   bool leave(ClientId client, phys::World& world);
 

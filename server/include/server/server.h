@@ -14,6 +14,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "server/game_rules.h"
 #include "server/log_format.h"
 
 namespace server {
@@ -182,6 +183,9 @@ struct ServerConfig {
   // runs with it; keep it short, it delays the next tick). If it throws, the tick
   // counts as failed: ServerStats::tick_failure says why and the server shuts down.
   std::function<void(std::uint64_t tick, std::uint64_t state_hash)> on_tick;
+  // A game on the server (game_rules.h): called at fixed points of every tick, on
+  // the server's thread. Unset: the world as the scene and the players make it.
+  std::shared_ptr<GameRules> rules;
   // When set, every join, leave, input applied and tick hash is written to this file
   // (docs/REPLAY.md; physics-sim --replay steps it again). A file that cannot be
   // created is refused with std::invalid_argument.
@@ -220,6 +224,7 @@ enum class DropReason : std::uint8_t {
   AddressFull,          // max_players_per_address players already joined from its address
   SeatBackoff,          // its address may not take a seat yet (seat_backoff after a drop)
   NotReading,           // joined, and acknowledged no snapshot for idle_timeout
+  RefusedByGame,        // the game rules refused the player (GameRules::on_join)
 };
 const char* to_string(DropReason reason);
 

@@ -8,10 +8,12 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "physics/world.h"
 #include "scene/scene.h"
+#include "server/game_rules.h"
 #include "server/input_buffer.h"
 #include "server/room.h"
 #include "server/tick_recorder.h"
@@ -33,6 +35,12 @@ struct BodyChanges {
   bool empty() const { return added.empty() && removed.empty(); }
 };
 
+// What Simulation::admit decided for a player.
+struct Admission {
+  std::optional<phys::BodyId> body;    // set: the player is in the world
+  std::optional<std::string> refused;  // the rules refused it, for this reason
+};
+
 struct TickResult {
   std::uint64_t tick = 0;  // the tick just stepped
   // Joined clients with no input due at this tick, who kept their held input
@@ -42,14 +50,23 @@ struct TickResult {
 
 class Simulation {
  public:
-  explicit Simulation(scene::SceneDef scene, SimulationOptions options = {});
+  // `rules`, when given, are called at their points of every tick (game_rules.h);
+  // on_create is called here.
+  explicit Simulation(scene::SceneDef scene, SimulationOptions options = {},
+                      std::shared_ptr<GameRules> rules = nullptr);
 
   // Gives the client a body at a free spawn position (see spawn.h). nullopt when
   // the client already has one or no position is free. `seat` puts the seat's own
   // spawn point first (find_spawn_position).
   std::optional<phys::BodyId> join(ClientId client,
                                    std::optional<std::uint32_t> seat = std::nullopt);
+  // join, saying why not when the rules refused the player (GameRules::on_join);
+  // without a body and a reason: no free spawn position.
+  Admission admit(ClientId client, std::optional<std::uint32_t> seat = std::nullopt);
   bool leave(ClientId client);
+  // The server stops: the rules' on_end. Once.
+  void end();
+  bool has_rules() const { return rules_ != nullptr; }
 
   // Checks and files one input of `client` (see check_input). Inputs of clients
   // not in the room are refused (NotJoined) and never filed.
@@ -87,7 +104,10 @@ class Simulation {
   const phys::World& world() const { return world_; }
   // Contact events from the world's steps (World::set_contact_events): they change
   // no state, so a run records and replays the same with them on or off.
-  void set_contact_events(bool on) { world_.set_contact_events(on); }
+  // Rules that want them keep them on (GameRules::wants_contact_events).
+  void set_contact_events(bool on) {
+    world_.set_contact_events(on || (rules_ && rules_->wants_contact_events()));
+  }
   const Room& room() const { return room_; }
   std::optional<phys::BodyId> body_of(ClientId client) const { return room_.body_of(client); }
   // The client's input state (nullptr for a client not in the room).
@@ -96,6 +116,11 @@ class Simulation {
   BodyChanges take_changes();
 
  private:
+  friend class GameWorld;
+  // A body added or removed, for snapshots (take_changes) and the relay.
+  void note_added(phys::BodyId body, const phys::BodyDef& def);
+  void note_removed(phys::BodyId body);
+
   scene::SceneDef scene_;
   SimulationOptions options_;
   double tick_rate_;
@@ -107,6 +132,9 @@ class Simulation {
   BodyChanges changes_;
   std::unique_ptr<TickRecorder> recorder_;
   RelayLog* relay_ = nullptr;
+  std::shared_ptr<GameRules> rules_;
+  std::uint64_t rules_tick_ = 0;  // GameWorld::tick() in the rules' callbacks
+  bool ended_ = false;
 };
 
 }  // namespace server

@@ -27,32 +27,56 @@ phys::BodyDef body_def(const physics::wire::RelayBody& body) {
   return def;
 }
 
-FollowResult apply_changes_and_inputs(phys::World& world, const physics::wire::RelayTick& tick) {
+namespace {
+
+// One list of changes (RelayTick.changes, before_step or after_step), in order.
+FollowResult apply_list(
+    phys::World& world, std::uint64_t tick,
+    const google::protobuf::RepeatedPtrField<physics::wire::RelayChange>& list) {
   FollowResult result;
-  for (const physics::wire::RelayChange& change : tick.changes()) {
+  const auto fail = [&](FollowProblem problem, std::string detail) {
+    result.problem = problem;
+    result.detail = "tick " + std::to_string(tick) + ": " + std::move(detail);
+    return result;
+  };
+  for (const physics::wire::RelayChange& change : list) {
     if (change.has_added()) {
       const std::uint64_t expected = change.added().body_id();
       if (world.contains(phys::BodyId::from_packed(expected))) {
-        result.problem = FollowProblem::BodyMismatch;
-        result.detail = "tick " + std::to_string(tick.tick()) + " adds body " + id_text(expected) +
-                        ", which the world holds already";
-        return result;
+        return fail(FollowProblem::BodyMismatch,
+                    "adds body " + id_text(expected) + ", which the world holds already");
       }
       const phys::BodyId got = world.add_body(body_def(change.added()));
       if (got.packed() != expected) {
-        result.problem = FollowProblem::BodyMismatch;
-        result.detail = "tick " + std::to_string(tick.tick()) + " adds body " + id_text(expected) +
-                        "; the world gave it " +
-                        (got.is_valid() ? id_text(got.packed()) : std::string("no id (refused)"));
-        return result;
+        return fail(FollowProblem::BodyMismatch,
+                    "adds body " + id_text(expected) + "; the world gave it " +
+                        (got.is_valid() ? id_text(got.packed()) : std::string("no id (refused)")));
+      }
+    } else if (change.has_set()) {
+      const physics::wire::RelaySet& set = change.set();
+      const phys::BodyId id = phys::BodyId::from_packed(set.body_id());
+      const bool ok =
+          (!set.has_position() || world.set_position(id, vec(set.position()))) &&
+          (!set.has_velocity() || world.set_velocity(id, vec(set.velocity()))) &&
+          (!set.has_acceleration() || world.set_acceleration(id, vec(set.acceleration())));
+      if (!ok) {
+        return fail(FollowProblem::BadInput, "moves body " + id_text(set.body_id()) +
+                                                 ", which the world does not hold, or to a "
+                                                 "value it refuses");
       }
     } else if (!world.remove_body(phys::BodyId::from_packed(change.removed()))) {
-      result.problem = FollowProblem::BodyMismatch;
-      result.detail = "tick " + std::to_string(tick.tick()) + " removes body " +
-                      id_text(change.removed()) + ", which the world does not hold";
-      return result;
+      return fail(FollowProblem::BodyMismatch,
+                  "removes body " + id_text(change.removed()) + ", which the world does not hold");
     }
   }
+  return result;
+}
+
+}  // namespace
+
+FollowResult apply_changes_and_inputs(phys::World& world, const physics::wire::RelayTick& tick) {
+  FollowResult result = apply_list(world, tick.tick(), tick.changes());
+  if (result.problem != FollowProblem::None) return result;
   for (const physics::wire::RelayInput& input : tick.inputs()) {
     if (!world.set_acceleration(phys::BodyId::from_packed(input.body_id()),
                                 {input.ax(), input.ay()})) {
@@ -63,13 +87,15 @@ FollowResult apply_changes_and_inputs(phys::World& world, const physics::wire::R
       return result;
     }
   }
-  return result;
+  return apply_list(world, tick.tick(), tick.before_step());
 }
 
 FollowResult follow(phys::World& world, const physics::wire::RelayTick& tick, double dt) {
   FollowResult result = apply_changes_and_inputs(world, tick);
   if (result.problem != FollowProblem::None) return result;
   world.step(dt);
+  result = apply_list(world, tick.tick(), tick.after_step());
+  if (result.problem != FollowProblem::None) return result;
   if (tick.has_state_hash()) {
     result.hash_checked = true;
     if (world.state_hash() != tick.state_hash()) {

@@ -33,13 +33,15 @@ struct FollowResult {
   bool hash_checked = false;
 };
 
-// Applies the tick's changes and inputs to `world`, then steps it by `dt`, then
-// compares the state hash when the tick has one. On BodyMismatch or BadInput the
+// Applies the tick's changes, inputs and the rules' before_step changes to `world`,
+// steps it by `dt`, applies the rules' after_step changes, then compares the state
+// hash when the tick has one. On BodyMismatch or BadInput the
 // world is left part-way and must be replaced (the server's world_state).
 FollowResult follow(phys::World& world, const physics::wire::RelayTick& tick, double dt);
 
-// Applies only the changes and inputs, without stepping (a predicting client sets its
-// own input in between).
+// Applies only the changes, the inputs and the rules' before_step changes, without
+// stepping (a predicting client sets its own input in between; it then steps and
+// applies after_step itself).
 FollowResult apply_changes_and_inputs(phys::World& world, const physics::wire::RelayTick& tick);
 
 // The world of a Welcome.world_state or Snapshot.world_state; nullopt and *error

@@ -1,0 +1,104 @@
+#pragma once
+// A game on the server: rules the Simulation calls at fixed points of every tick,
+// through a narrow handle on the world (docs/SERVER.md, "Your game on the server").
+//
+// Deterministic by construction: a rule sees the tick, the world, the players and
+// their inputs, nothing else (no clock, no network, no order of connections beyond
+// the ticks they joined in). A recorded run is replayed by running the same rules
+// again (server::Replayer with the rules): the recording holds joins, leaves and
+// inputs, and each tick's hash checks that the rules did the same.
+//
+// The order within a tick (Simulation::step_tick):
+//   joins and leaves since the previous tick (on_join, on_leave, as they happen)
+//   the inputs due at the tick applied to the players' bodies
+//   before_step(world, inputs)
+//   the world's step
+//   after_step(world, contact events of the step)
+// on_create once, when the Simulation is made (the scene loaded, tick 0); on_end
+// when the server stops. A rule that throws fails the tick, as any tick failure.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "physics/world.h"
+#include "server/room.h"
+
+namespace server {
+
+// An input applied at this tick: the player, its body and the acceleration set.
+struct AppliedInput {
+  ClientId client = 0;
+  phys::BodyId body;
+  phys::Vec2 acceleration{};
+};
+
+// What on_join decides. Default: the scene's player body at a free spawn point.
+struct JoinDecision {
+  // Set: the player is refused, and its Error says this (ERROR_REFUSED_BY_GAME).
+  std::optional<std::string> refuse;
+  // Set: the player's body, instead of the scene's player at a spawn point. Its
+  // motion must be dynamic (the player sets its acceleration).
+  std::optional<phys::BodyDef> body;
+};
+
+class Simulation;
+
+// The rules' handle on the world: read anything, change bodies, nothing else. What
+// the rules change reaches every client as any change does (bodies added and
+// removed in snapshots; every change in the input relay, docs/PROTOCOL.md 5.12).
+class GameWorld {
+ public:
+  // The tick being stepped (before_step, after_step), or the last one stepped.
+  std::uint64_t tick() const;
+  double dt() const;
+
+  // Bodies made and removed by the rules. The world's limits answer (max_bodies:
+  // BodyDefError::TooManyBodies, coordinates beyond 1e7: OutOfBounds). A player's
+  // own body cannot be destroyed here (false): the player leaves instead.
+  phys::BodyId create(const phys::BodyDef& def, phys::BodyDefError* error = nullptr);
+  bool destroy(phys::BodyId id);
+  // Each false for an unknown id or a value the world refuses (World's setters).
+  bool set_position(phys::BodyId id, phys::Vec2 position);
+  bool set_velocity(phys::BodyId id, phys::Vec2 velocity);
+  bool set_acceleration(phys::BodyId id, phys::Vec2 acceleration);
+  // Velocity += impulse / mass, on a dynamic body.
+  bool apply_impulse(phys::BodyId id, phys::Vec2 impulse);
+
+  std::optional<phys::BodyState> body(phys::BodyId id) const;
+  std::vector<phys::BodyState> bodies() const;
+  std::size_t body_count() const;
+  // The player's body, if the player is in the world.
+  std::optional<phys::BodyId> body_of(ClientId client) const;
+  // The players in the world, ascending id, with their bodies.
+  const std::map<ClientId, phys::BodyId>& players() const;
+  // The last step's contact events (after_step; GameRules::wants_contact_events).
+  const std::vector<phys::ContactEvent>& contact_events() const;
+  std::uint64_t state_hash() const;
+
+ private:
+  friend class Simulation;
+  explicit GameWorld(Simulation& simulation) : simulation_(simulation) {}
+  Simulation& simulation_;
+};
+
+class GameRules {
+ public:
+  virtual ~GameRules() = default;
+  virtual void on_create(GameWorld& /*world*/) {}
+  // A player joins (its seat, in a lockstep lobby, or nullopt).
+  virtual JoinDecision on_join(GameWorld& /*world*/, ClientId /*client*/,
+                               std::optional<std::uint32_t> /*seat*/) {
+    return {};
+  }
+  // A player left; its body is gone already.
+  virtual void on_leave(GameWorld& /*world*/, ClientId /*client*/) {}
+  virtual void before_step(GameWorld& /*world*/, const std::vector<AppliedInput>& /*inputs*/) {}
+  virtual void after_step(GameWorld& /*world*/) {}
+  virtual void on_end(GameWorld& /*world*/) {}
+  // True: the world produces contact events every step, for after_step.
+  virtual bool wants_contact_events() const { return false; }
+};
+
+}  // namespace server

@@ -1,0 +1,68 @@
+// The game rules' handle on the world (game_rules.h): each change made on the
+// Simulation's world and reported as any change is, to snapshots and the relay.
+#include "server/game_rules.h"
+#include "server/relay_log.h"
+#include "server/simulation.h"
+
+namespace server {
+
+std::uint64_t GameWorld::tick() const { return simulation_.rules_tick_; }
+double GameWorld::dt() const { return simulation_.dt_; }
+
+phys::BodyId GameWorld::create(const phys::BodyDef& def, phys::BodyDefError* error) {
+  const phys::BodyId id = simulation_.world_.add_body(def, error);
+  if (id.is_valid()) simulation_.note_added(id, def);
+  return id;
+}
+
+bool GameWorld::destroy(phys::BodyId id) {
+  for (const auto& [client, body] : simulation_.room_.members()) {
+    if (body == id) return false;  // a player's body leaves with its player
+  }
+  if (!simulation_.world_.remove_body(id)) return false;
+  simulation_.note_removed(id);
+  return true;
+}
+
+bool GameWorld::set_position(phys::BodyId id, phys::Vec2 position) {
+  if (!simulation_.world_.set_position(id, position)) return false;
+  if (simulation_.relay_) simulation_.relay_->set(id, position, std::nullopt, std::nullopt);
+  return true;
+}
+
+bool GameWorld::set_velocity(phys::BodyId id, phys::Vec2 velocity) {
+  if (!simulation_.world_.set_velocity(id, velocity)) return false;
+  if (simulation_.relay_) simulation_.relay_->set(id, std::nullopt, velocity, std::nullopt);
+  return true;
+}
+
+bool GameWorld::set_acceleration(phys::BodyId id, phys::Vec2 acceleration) {
+  if (!simulation_.world_.set_acceleration(id, acceleration)) return false;
+  if (simulation_.relay_) simulation_.relay_->set(id, std::nullopt, std::nullopt, acceleration);
+  return true;
+}
+
+bool GameWorld::apply_impulse(phys::BodyId id, phys::Vec2 impulse) {
+  const std::optional<phys::BodyState> body = simulation_.world_.body(id);
+  if (!body || body->motion != phys::Motion::Dynamic || !(body->mass > 0.0)) return false;
+  return set_velocity(
+      id, {body->velocity.x + impulse.x / body->mass, body->velocity.y + impulse.y / body->mass});
+}
+
+std::optional<phys::BodyState> GameWorld::body(phys::BodyId id) const {
+  return simulation_.world_.body(id);
+}
+std::vector<phys::BodyState> GameWorld::bodies() const { return simulation_.world_.bodies(); }
+std::size_t GameWorld::body_count() const { return simulation_.world_.body_count(); }
+std::optional<phys::BodyId> GameWorld::body_of(ClientId client) const {
+  return simulation_.room_.body_of(client);
+}
+const std::map<ClientId, phys::BodyId>& GameWorld::players() const {
+  return simulation_.room_.members();
+}
+const std::vector<phys::ContactEvent>& GameWorld::contact_events() const {
+  return simulation_.world_.contact_events();
+}
+std::uint64_t GameWorld::state_hash() const { return simulation_.world_.state_hash(); }
+
+}  // namespace server
