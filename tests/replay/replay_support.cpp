@@ -55,8 +55,9 @@ phys::Vec2 scripted_input(std::size_t k, std::uint64_t t, std::uint64_t hold) {
 }
 
 std::vector<std::uint64_t> record_in_process(const std::filesystem::path& path, std::size_t clients,
-                                             std::uint64_t ticks, server::RecordOptions options) {
-  server::Simulation simulation(scene::default_scene());
+                                             std::uint64_t ticks, server::RecordOptions options,
+                                             std::shared_ptr<server::GameRules> rules) {
+  server::Simulation simulation(scene::default_scene(), {}, std::move(rules));
   std::string error;
   auto recorder = server::TickRecorder::create(path, simulation.scene(), simulation.tick_rate(),
                                                simulation.max_ticks_ahead(), options, &error);
