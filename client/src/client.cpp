@@ -65,6 +65,7 @@ bool Client::connect(std::chrono::milliseconds timeout) {
   snapshots_.clear();
   errors_.clear();
   pongs_.clear();
+  game_messages_.clear();
   held_.reset();
   ack_pending_ = false;
   ack_due_ = 0;
@@ -134,6 +135,14 @@ bool Client::send_input(std::uint64_t tick, double ax, double ay) {
   ++next_sequence_;
   ++stats_.inputs_sent;
   return true;
+}
+
+bool Client::send_game_message(std::uint64_t tick, std::string payload) {
+  if (state_ != ConnectionState::Connected) return false;
+  physics::wire::ClientMessage message;
+  message.mutable_game_message()->set_tick(tick);
+  message.mutable_game_message()->set_payload(std::move(payload));
+  return send_frame(wire::encode_frame(message));
 }
 
 bool Client::send_ping(std::uint64_t nonce) {

@@ -123,6 +123,12 @@ void Client::handle_frame(const std::string& frame) {
       pongs_.push_back(convert::from_wire(message.pong()));
       pongs_.back().received_at = Clock::now();
       return;
+    case Kind::kGameMessage:
+      if (game_messages_.size() >= kMaxBufferedSmallEvents) {
+        game_messages_.erase(game_messages_.begin());
+      }
+      game_messages_.push_back({message.game_message().tick(), message.game_message().payload()});
+      return;
     case Kind::KIND_NOT_SET:
       // A kind newer than this client: ignored, as proto3 intends.
       return;

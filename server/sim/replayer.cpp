@@ -144,6 +144,15 @@ bool Replayer::apply(const rec::Record& record) {
       }
       return true;
     }
+    case rec::Record::kGameMessage: {
+      const rec::GameMessage& message = record.game_message();
+      if (!sim.file_recorded_game_message(message.client(), message.tick(), message.payload()) &&
+          !diverged_) {
+        return fail("game message of client " + std::to_string(message.client()) +
+                    ", not in the room");
+      }
+      return true;
+    }
     default:
       return fail("a client's record (Received) in a server recording");
   }
@@ -170,6 +179,10 @@ Replayer::Step Replayer::step() {
       case rec::Record::kInput:
         if (next_.input().tick() == 0) return bad("input for tick 0 (ticks start at 1)");
         due = next_.input().tick() - 1;
+        break;
+      case rec::Record::kGameMessage:
+        if (next_.game_message().tick() == 0) return bad("game message for tick 0");
+        due = next_.game_message().tick() - 1;
         break;
       case rec::Record::kTickHash:
         if (next_.tick_hash().tick() == 0) return bad("hash of tick 0 (ticks start at 1)");

@@ -65,4 +65,16 @@ const std::vector<phys::ContactEvent>& GameWorld::contact_events() const {
 }
 std::uint64_t GameWorld::state_hash() const { return simulation_.world_.state_hash(); }
 
+const std::vector<ClientGameMessage>& GameWorld::messages() const {
+  return simulation_.delivering_;
+}
+
+bool GameWorld::send(ClientId client, std::string payload) {
+  if (payload.size() > kMaxOutgoingGameMessageBytes) return false;
+  simulation_.outgoing_.push_back({client, simulation_.rules_tick_, std::move(payload)});
+  return true;
+}
+
+bool GameWorld::broadcast(std::string payload) { return send(0, std::move(payload)); }
+
 }  // namespace server

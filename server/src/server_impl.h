@@ -86,6 +86,10 @@ class Server::Impl final : public SessionHost {
   void on_input(Session& session, const physics::wire::Input& input);
   void on_ack(Session& session, const physics::wire::Ack& ack);
   void on_full_state_request(Session& session);
+  void on_game_message(Session& session, const physics::wire::GameMessage& message);
+  // The game rules' messages of the tick (GameWorld::send, broadcast), after its
+  // snapshots.
+  void send_game_messages();
   // Each relay client's place in it: the last tick it was sent, and the first change
   // its world does not hold yet.
   struct RelayCursor {

@@ -37,6 +37,9 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
       }
       on_input(session, message.input());
       return;
+    case Kind::kGameMessage:
+      on_game_message(session, message.game_message());
+      return;
     case Kind::kPing: {
       physics::wire::ServerMessage reply;
       physics::wire::Pong& pong = *reply.mutable_pong();
@@ -160,6 +163,56 @@ void Server::Impl::on_input(Session& session, const physics::wire::Input& input)
     }
   }
   if (config_.lockstep) schedule_lockstep();
+}
+
+void Server::Impl::on_game_message(Session& session, const physics::wire::GameMessage& message) {
+  const GameMessageVerdict verdict =
+      simulation_.submit_game_message(session.id(), message.tick(), message.payload());
+  const auto refuse = [&](physics::wire::ErrorCode code, const std::string& why) {
+    update_stats([](ServerStats& s) { ++s.game_messages_refused; });
+    session.send(wire::make_error(code, why + "; game message dropped", false));
+  };
+  switch (verdict) {
+    case GameMessageVerdict::OnTime:
+    case GameMessageVerdict::Late:
+      update_stats([](ServerStats& s) { ++s.game_messages; });
+      return;
+    case GameMessageVerdict::TooFarAhead:
+      return refuse(physics::wire::ERROR_TICK_TOO_FAR_AHEAD,
+                    "game message for tick " + std::to_string(message.tick()) + ", more than " +
+                        std::to_string(simulation_.max_ticks_ahead()) + " ticks ahead of " +
+                        std::to_string(simulation_.current_tick()));
+    case GameMessageVerdict::NotJoined:
+      return refuse(physics::wire::ERROR_INVALID_GAME_MESSAGE,
+                    "game message from a client without a body in the world");
+    case GameMessageVerdict::NoGame:
+      return refuse(physics::wire::ERROR_INVALID_GAME_MESSAGE,
+                    "this server runs no game: game messages have nowhere to go");
+    case GameMessageVerdict::TooLarge:
+      return refuse(physics::wire::ERROR_INVALID_GAME_MESSAGE,
+                    "game message of " + std::to_string(message.payload().size()) +
+                        " bytes, over the limit of " + std::to_string(kMaxGameMessageBytes));
+    case GameMessageVerdict::TooMany:
+      return refuse(physics::wire::ERROR_INVALID_GAME_MESSAGE,
+                    "more than " + std::to_string(kMaxGameMessagesPerTick) +
+                        " game messages for tick " + std::to_string(message.tick()));
+  }
+}
+
+void Server::Impl::send_game_messages() {
+  for (OutgoingGameMessage& out : simulation_.take_outgoing_messages()) {
+    physics::wire::ServerMessage message;
+    message.mutable_game_message()->set_tick(out.tick);
+    message.mutable_game_message()->set_payload(std::move(out.payload));
+    if (out.client != 0) {
+      const auto it = sessions_.find(out.client);
+      if (it != sessions_.end() && it->second->joined()) it->second->send(message);
+      continue;
+    }
+    for (const auto& [id, session] : sessions_) {
+      if (session->joined()) session->send(message);
+    }
+  }
 }
 
 }  // namespace server

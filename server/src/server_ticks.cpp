@@ -147,6 +147,7 @@ TickResult Server::Impl::run_one_tick(
   for (const std::uint64_t id : changes.removed) feeds_.note_removed(id);
   TruthFrame frame = read_truth(simulation_.world(), result.tick, &previous_frame_);
   broadcast(frame);
+  send_game_messages();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const double period = std::chrono::duration<double>(tick_period_).count();

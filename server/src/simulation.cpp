@@ -98,6 +98,7 @@ bool Simulation::leave(ClientId client) {
   room_.leave(client, world_);
   if (recorder_) recorder_->left(current_tick_, client);
   inputs_.erase(client);
+  last_applied_.erase(client);
   note_removed(*body);
   if (rules_) {
     rules_tick_ = current_tick_;
@@ -165,8 +166,27 @@ TickResult Simulation::step_tick() {
     } else if (body) {
       world_.set_acceleration(*body, taken.acceleration);
     }
-    if (body && rules_) applied.push_back({client, *body, taken.acceleration});
+    if (body && rules_) {
+      // Listed when it differs from the client's last, as a recording holds inputs,
+      // so that a replay hands the rules the same list.
+      const auto [last, first] = last_applied_.try_emplace(client, taken.acceleration);
+      if (first || !(last->second == taken.acceleration)) {
+        last->second = taken.acceleration;
+        applied.push_back({client, *body, taken.acceleration});
+      }
+    }
     if (recorder_ && body) recorder_->applied(result.tick, client, taken.acceleration);
+  }
+  delivering_.clear();
+  if (const auto due = game_messages_.find(result.tick); due != game_messages_.end()) {
+    for (auto& [client, payloads] : due->second) {
+      if (!room_.contains(client)) continue;  // left after sending it
+      for (std::string& payload : payloads) {
+        if (recorder_) recorder_->game_message(result.tick, client, payload);
+        delivering_.push_back({client, std::move(payload)});
+      }
+    }
+    game_messages_.erase(due);
   }
   if (rules_) {
     // The rules' changes before the step: after the inputs, in the relay too.
@@ -175,6 +195,7 @@ TickResult Simulation::step_tick() {
     GameWorld handle(*this);
     rules_->before_step(handle, applied);
     if (relay_) relay_->end_rules();
+    delivering_.clear();
   }
   world_.step(dt_);
   current_tick_ = result.tick;
@@ -187,6 +208,27 @@ TickResult Simulation::step_tick() {
   if (recorder_) recorder_->stepped(result.tick, world_);
   if (relay_) relay_->stepped(result.tick, world_.state_hash());
   return result;
+}
+
+GameMessageVerdict Simulation::submit_game_message(ClientId client, std::uint64_t tick,
+                                                   std::string payload) {
+  if (!rules_) return GameMessageVerdict::NoGame;
+  if (!room_.contains(client)) return GameMessageVerdict::NotJoined;
+  if (payload.size() > kMaxGameMessageBytes) return GameMessageVerdict::TooLarge;
+  if (tick > current_tick_ + options_.max_ticks_ahead) return GameMessageVerdict::TooFarAhead;
+  const bool late = tick <= current_tick_;
+  const std::uint64_t at = late ? current_tick_ + 1 : tick;
+  std::vector<std::string>& queued = game_messages_[at][client];
+  if (queued.size() >= kMaxGameMessagesPerTick) return GameMessageVerdict::TooMany;
+  queued.push_back(std::move(payload));
+  return late ? GameMessageVerdict::Late : GameMessageVerdict::OnTime;
+}
+
+bool Simulation::file_recorded_game_message(ClientId client, std::uint64_t tick,
+                                            std::string payload) {
+  if (!room_.contains(client) || tick <= current_tick_) return false;
+  game_messages_[tick][client].push_back(std::move(payload));
+  return true;
 }
 
 const ClientInputs* Simulation::inputs_of(ClientId client) const {

@@ -59,6 +59,15 @@ void TickRecorder::left(std::uint64_t tick, ClientId client) {
   writer_->append(record_);
 }
 
+void TickRecorder::game_message(std::uint64_t tick, ClientId client, const std::string& payload) {
+  record_.Clear();
+  physics::recording::GameMessage& message = *record_.mutable_game_message();
+  message.set_tick(tick);
+  message.set_client(client);
+  message.set_payload(payload);
+  writer_->append(record_);
+}
+
 void TickRecorder::applied(std::uint64_t tick, ClientId client, phys::Vec2 acceleration) {
   // Compared as exact values: the world holds an acceleration until it is set to a
   // different one, so an equal input changes nothing and need not be replayed.

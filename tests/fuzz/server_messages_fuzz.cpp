@@ -204,6 +204,14 @@ class FuzzServer {
       case Kind::kFullStateRequest:
         feeds_.request_full_state(connection.id);
         return;
+      case Kind::kGameMessage:
+        // No rules here: refused (NoGame), and nothing filed.
+        if (simulation_.submit_game_message(connection.id, message.game_message().tick(),
+                                            message.game_message().payload()) !=
+            server::GameMessageVerdict::NoGame) {
+          std::abort();
+        }
+        return;
       case Kind::kBye:
         close(connection);
         return;

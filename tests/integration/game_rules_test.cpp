@@ -18,8 +18,9 @@
 namespace itest {
 namespace {
 
-// A small game: a crate appears every 10 ticks above the players, every player gets
-// a kick upward each 15 ticks, and the oldest crate is moved back up after 50.
+// A small game: a crate appears every 10 ticks above the players (and every client
+// is told), every player gets a kick upward each 15 ticks, a player who sends
+// "jump" is kicked up at that tick, and the oldest crate is moved back up after 50.
 class CrateRules : public server::GameRules {
  public:
   std::vector<phys::BodyId> crates;
@@ -30,6 +31,10 @@ class CrateRules : public server::GameRules {
       crate.half_extents = {0.4, 0.4};
       crate.position = {-3.0 + static_cast<double>(crates.size() % 7), 8.0};
       crates.push_back(w.create(crate));
+      w.broadcast("crate " + std::to_string(crates.size()));
+    }
+    for (const server::ClientGameMessage& m : w.messages()) {
+      if (m.payload == "jump") w.apply_impulse(*w.body_of(m.client), {0.0, 5.0});
     }
     if (w.tick() % 15 == 0) {
       for (const server::AppliedInput& input : inputs) w.apply_impulse(input.body, {0.0, 3.0});
@@ -74,6 +79,11 @@ TEST(GameRulesOverTcp, LockstepWithRulesEqualsTheInProcessRun) {
   for (std::uint64_t tick = start + 1; tick <= start + 150; ++tick) {
     for (std::size_t k = 0; k < clients->size(); ++k) {
       const client::Vec2 a = scripted(k, tick);
+      if (k == 0 && tick % 20 == 5) {
+        // Before the input of its tick, so that the tick the input completes has it.
+        ASSERT_TRUE((*clients)[k]->send_game_message(tick, "jump"));
+        reference.submit_game_message((*clients)[k]->welcome().client_id, tick, "jump");
+      }
       ASSERT_TRUE((*clients)[k]->send_input(tick, a.x, a.y));
       reference.submit_input((*clients)[k]->welcome().client_id, tick, {a.x, a.y});
     }
@@ -87,6 +97,14 @@ TEST(GameRulesOverTcp, LockstepWithRulesEqualsTheInProcessRun) {
           << "tick " << tick << ", client " << k;
     }
   }
+  std::uint64_t jumps = 0;
+  for (std::uint64_t tick = start + 1; tick <= start + 150; ++tick) jumps += tick % 20 == 5;
+  EXPECT_EQ(server.stats().game_messages, jumps);
+  // The rules' messages reached the players, stamped with their ticks.
+  const std::vector<client::GameMessage> told = (*clients)[1]->take_game_messages();
+  ASSERT_FALSE(told.empty());
+  EXPECT_EQ(told.front().payload, "crate 1");
+  EXPECT_EQ(told.front().tick % 10, 0u);
 }
 
 class NoLateComers : public server::GameRules {

@@ -8,6 +8,8 @@
 
 #include "replay_support.h"
 #include "replayer.h"
+#include "server/simulation.h"
+#include "server/tick_recorder.h"
 
 namespace rtest {
 namespace {
@@ -54,7 +56,44 @@ TEST(RulesReplay, TheSameRulesReplayEveryTickAndNoRulesDifferWhereTheyActed) {
   const replay::ReplayReport differs =
       replay::check_recording(*std::get<std::unique_ptr<replay::Replayer>>(without));
   EXPECT_EQ(differs.outcome, replay::ReplayReport::Outcome::Diverged);
-  EXPECT_EQ(differs.first_difference.tick, 7u);  // the first kick
+  EXPECT_EQ(differs.first_difference.tick, 10u);  // the first ball
+}
+
+// Game messages recorded as delivered, replayed at their ticks: a "jump" kicks the
+// sender's body, so a replay that missed one, or put it at another tick, differs.
+class JumpRules : public server::GameRules {
+ public:
+  void before_step(server::GameWorld& w, const std::vector<server::AppliedInput>&) override {
+    for (const server::ClientGameMessage& m : w.messages()) {
+      if (m.payload == "jump") w.apply_impulse(*w.body_of(m.client), {0.0, 4.0});
+    }
+  }
+};
+
+TEST(RulesReplay, GameMessagesAreRecordedAndReplayedAtTheirTicks) {
+  TempFile file("messages.precord");
+  {
+    server::Simulation sim(scene::default_scene(), {}, std::make_shared<JumpRules>());
+    std::string error;
+    auto recorder = server::TickRecorder::create(file.path(), sim.scene(), sim.tick_rate(),
+                                                 sim.max_ticks_ahead(), {}, &error);
+    ASSERT_TRUE(recorder) << error;
+    sim.record_to(std::move(recorder));
+    ASSERT_TRUE(sim.join(1).has_value());
+    for (std::uint64_t t = 1; t <= 90; ++t) {
+      if (t % 30 == 3) sim.submit_game_message(1, t, "jump");
+      sim.submit_input(1, t, scripted_input(0, t));
+      sim.step_tick();
+    }
+    sim.record_to(nullptr);
+  }
+  EXPECT_EQ(count_kind(load_or_fail(file.path()), physics::recording::Record::kGameMessage), 3u);
+  auto replayer = replay::Replayer::open(file.path(), std::make_shared<JumpRules>());
+  ASSERT_TRUE(std::holds_alternative<std::unique_ptr<replay::Replayer>>(replayer));
+  const replay::ReplayReport report =
+      replay::check_recording(*std::get<std::unique_ptr<replay::Replayer>>(replayer));
+  EXPECT_EQ(report.outcome, replay::ReplayReport::Outcome::Equal);
+  EXPECT_EQ(report.hashes_checked, 90u);
 }
 
 }  // namespace

@@ -272,4 +272,73 @@ TEST(GameRules, TheRelayCarriesWhatTheRulesDid) {
   EXPECT_GT(rules->made.size(), 5u);
 }
 
+// Writes down the game messages each tick delivers.
+class MailRules : public GameRules {
+ public:
+  std::vector<std::string> seen;
+  void before_step(GameWorld& w, const std::vector<AppliedInput>&) override {
+    for (const server::ClientGameMessage& m : w.messages()) {
+      seen.push_back(std::to_string(w.tick()) + ":" + std::to_string(m.client) + ":" + m.payload);
+    }
+  }
+};
+
+TEST(GameMessages, DeliveredOnTheirTickAndEveryLimitAnswered) {
+  auto rules = std::make_shared<MailRules>();
+  Simulation sim(server_test::free_space_scene(), {}, rules);
+  ASSERT_TRUE(sim.join(1).has_value());
+  ASSERT_TRUE(sim.join(2).has_value());
+  using V = server::GameMessageVerdict;
+  EXPECT_EQ(sim.submit_game_message(2, 3, "b"), V::OnTime);
+  EXPECT_EQ(sim.submit_game_message(1, 3, "a1"), V::OnTime);
+  EXPECT_EQ(sim.submit_game_message(1, 3, "a2"), V::OnTime);
+  EXPECT_EQ(sim.submit_game_message(1, 3, "a3"), V::OnTime);
+  EXPECT_EQ(sim.submit_game_message(1, 3, "a4"), V::OnTime);
+  EXPECT_EQ(sim.submit_game_message(1, 3, "a5"), V::TooMany);
+  EXPECT_EQ(sim.submit_game_message(1, 2, std::string(server::kMaxGameMessageBytes + 1, 'x')),
+            V::TooLarge);
+  EXPECT_EQ(sim.submit_game_message(1, 2, std::string(server::kMaxGameMessageBytes, 'x')),
+            V::OnTime);
+  EXPECT_EQ(sim.submit_game_message(1, sim.max_ticks_ahead() + 1, "far"), V::TooFarAhead);
+  EXPECT_EQ(sim.submit_game_message(7, 2, "stranger"), V::NotJoined);
+  for (int i = 0; i < 3; ++i) sim.step_tick();
+  EXPECT_EQ(sim.submit_game_message(2, 1, "late"), V::Late);  // tick 1 has passed: at 4
+  sim.step_tick();
+  EXPECT_EQ(rules->seen,
+            (std::vector<std::string>{"2:1:" + std::string(256, 'x'), "3:1:a1", "3:1:a2", "3:1:a3",
+                                      "3:1:a4", "3:2:b", "4:2:late"}));
+  // Without rules a message has nowhere to go.
+  Simulation plain(server_test::free_space_scene());
+  ASSERT_TRUE(plain.join(1).has_value());
+  EXPECT_EQ(plain.submit_game_message(1, 1, "x"), V::NoGame);
+}
+
+// The rules' own messages: to one player or all, stamped with the tick.
+class HeraldRules : public GameRules {
+ public:
+  void after_step(GameWorld& w) override {
+    if (w.tick() == 2) {
+      EXPECT_TRUE(w.send(1, "to one"));
+    }
+    if (w.tick() == 3) {
+      EXPECT_TRUE(w.broadcast("to all"));
+      EXPECT_FALSE(w.broadcast(std::string(server::kMaxOutgoingGameMessageBytes + 1, 'y')));
+    }
+  }
+};
+
+TEST(GameMessages, TheRulesSendToOneOrAll) {
+  Simulation sim(server_test::free_space_scene(), {}, std::make_shared<HeraldRules>());
+  ASSERT_TRUE(sim.join(1).has_value());
+  for (int i = 0; i < 3; ++i) sim.step_tick();
+  const std::vector<server::OutgoingGameMessage> out = sim.take_outgoing_messages();
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].client, 1u);
+  EXPECT_EQ(out[0].tick, 2u);
+  EXPECT_EQ(out[0].payload, "to one");
+  EXPECT_EQ(out[1].client, 0u);
+  EXPECT_EQ(out[1].tick, 3u);
+  EXPECT_TRUE(sim.take_outgoing_messages().empty());
+}
+
 }  // namespace

@@ -13,6 +13,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "client/connection_state.h"
 #include "client/types.h"
@@ -107,6 +109,13 @@ class Client {
   // not connected or the write failed (the state then says why).
   bool send_input(std::uint64_t tick, double ax, double ay);
   bool send_ping(std::uint64_t nonce);
+  // A message for the game's rules at `tick` (docs/PROTOCOL.md 3.9): at most 256
+  // bytes, 4 a tick. Send it before the tick's input, so that a lockstep tick that
+  // steps on the input finds it there.
+  bool send_game_message(std::uint64_t tick, std::string payload);
+  // The game's messages received so far (while waiting for snapshots), oldest first;
+  // at most 256 are kept.
+  std::vector<GameMessage> take_game_messages() { return std::exchange(game_messages_, {}); }
 
   // The oldest snapshot not yet taken, waiting up to `timeout` for one to arrive.
   // nullopt on timeout or when the session ended (state() tells which). Taking a
@@ -159,6 +168,7 @@ class Client {
   std::deque<Snapshot> snapshots_;
   std::deque<ServerError> errors_;
   std::deque<Pong> pongs_;
+  std::vector<GameMessage> game_messages_;
   std::unique_ptr<Held> held_;
   std::uint64_t ack_due_ = 0;  // the newest tick taken and not yet acknowledged
   bool ack_pending_ = false;

@@ -171,6 +171,13 @@ struct Snapshot {
   const BodyState* find(std::uint64_t body_id) const;
 };
 
+// A message from the game running on the server (ServerMessage.game_message): sent
+// by its rules while stepping `tick`.
+struct GameMessage {
+  std::uint64_t tick = 0;
+  std::string payload;
+};
+
 struct Pong {
   std::uint64_t nonce = 0;
   std::uint64_t client_time_ns = 0;  // the Ping's, in the client's steady clock

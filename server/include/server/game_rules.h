@@ -5,7 +5,7 @@
 // Deterministic by construction: a rule sees the tick, the world, the players and
 // their inputs, nothing else (no clock, no network, no order of connections beyond
 // the ticks they joined in). A recorded run is replayed by running the same rules
-// again (server::Replayer with the rules): the recording holds joins, leaves and
+// again (replay::Replayer with the rules): the recording holds joins, leaves and
 // inputs, and each tick's hash checks that the rules did the same.
 //
 // The order within a tick (Simulation::step_tick):
@@ -27,11 +27,19 @@
 
 namespace server {
 
-// An input applied at this tick: the player, its body and the acceleration set.
+// An input applied at this tick that changed the player's acceleration (a player's
+// first, or one that differs from its last: the inputs a recording holds, so that a
+// replay hands the rules the same list): the player, its body, the acceleration.
 struct AppliedInput {
   ClientId client = 0;
   phys::BodyId body;
   phys::Vec2 acceleration{};
+};
+
+// A client's game message, delivered at its tick (GameWorld::messages).
+struct ClientGameMessage {
+  ClientId client = 0;
+  std::string payload;
 };
 
 // What on_join decides. Default: the scene's player body at a free spawn point.
@@ -76,6 +84,15 @@ class GameWorld {
   // The last step's contact events (after_step; GameRules::wants_contact_events).
   const std::vector<phys::ContactEvent>& contact_events() const;
   std::uint64_t state_hash() const;
+
+  // The players' game messages for this tick (before_step; empty elsewhere), in
+  // ascending client, each client's in the order they arrived.
+  const std::vector<ClientGameMessage>& messages() const;
+  // Messages to a player, or to every player and spectator, sent once the tick's
+  // snapshots are (ServerMessage.game_message, stamped with the tick). False for a
+  // payload over 65,536 bytes (nothing sent).
+  bool send(ClientId client, std::string payload);
+  bool broadcast(std::string payload);
 
  private:
   friend class Simulation;

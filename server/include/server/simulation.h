@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "physics/world.h"
@@ -39,6 +40,28 @@ struct BodyChanges {
 struct Admission {
   std::optional<phys::BodyId> body;    // set: the player is in the world
   std::optional<std::string> refused;  // the rules refused it, for this reason
+};
+
+// Limits on the players' game messages (docs/PROTOCOL.md 3.9).
+inline constexpr std::size_t kMaxGameMessageBytes = 256;
+inline constexpr std::size_t kMaxGameMessagesPerTick = 4;  // a client's, at one tick
+inline constexpr std::size_t kMaxOutgoingGameMessageBytes = 65536;
+
+enum class GameMessageVerdict : std::uint8_t {
+  OnTime,       // filed at the tick it names
+  Late,         // its tick was already stepped: filed at the next tick
+  TooFarAhead,  // beyond current + max_ticks_ahead: dropped
+  NotJoined,    // the client is not in the world: dropped
+  NoGame,       // the simulation has no game rules: dropped
+  TooLarge,     // over kMaxGameMessageBytes: dropped
+  TooMany,      // the client has kMaxGameMessagesPerTick at that tick already: dropped
+};
+
+// A message the rules sent (GameWorld::send, broadcast): client 0 is everyone.
+struct OutgoingGameMessage {
+  ClientId client = 0;
+  std::uint64_t tick = 0;
+  std::string payload;
 };
 
 struct TickResult {
@@ -75,6 +98,14 @@ class Simulation {
   // was, without check_input: it was checked and clamped when it was recorded, and
   // clamping twice could move it by a rounding. False for a client not in the room.
   bool file_recorded_input(ClientId client, std::uint64_t tick, phys::Vec2 acceleration);
+  // A game message of `client` for the rules at `tick` (checked as inputs are, and
+  // against the limits above). Accepted ones are delivered at their tick, recorded.
+  GameMessageVerdict submit_game_message(ClientId client, std::uint64_t tick, std::string payload);
+  // One a recording says was delivered at `tick`, as it was. False for a client not
+  // in the room.
+  bool file_recorded_game_message(ClientId client, std::uint64_t tick, std::string payload);
+  // The rules' messages since the last call, in the order sent.
+  std::vector<OutgoingGameMessage> take_outgoing_messages() { return std::exchange(outgoing_, {}); }
 
   // From now on, joins, leaves, applied inputs and tick hashes go to `recorder`
   // (nullptr stops recording and closes the file). Recording changes no result. A
@@ -134,6 +165,12 @@ class Simulation {
   RelayLog* relay_ = nullptr;
   std::shared_ptr<GameRules> rules_;
   std::uint64_t rules_tick_ = 0;  // GameWorld::tick() in the rules' callbacks
+  // Game messages waiting for their tick (ascending tick, then client), and the
+  // ones of the tick being stepped (GameWorld::messages).
+  std::map<std::uint64_t, std::map<ClientId, std::vector<std::string>>> game_messages_;
+  std::vector<ClientGameMessage> delivering_;
+  std::vector<OutgoingGameMessage> outgoing_;
+  std::map<ClientId, phys::Vec2> last_applied_;  // each player's last input the rules saw
   bool ended_ = false;
 };
 

@@ -46,6 +46,8 @@ class TickRecorder {
   // The acceleration `client`'s body holds from `tick` on; written only when it
   // differs from the last one written for that client.
   void applied(std::uint64_t tick, ClientId client, phys::Vec2 acceleration);
+  // A game message delivered to the rules at `tick` (before it is stepped).
+  void game_message(std::uint64_t tick, ClientId client, const std::string& payload);
   // After `tick` was stepped.
   void stepped(std::uint64_t tick, const phys::World& world);
 
