@@ -62,17 +62,18 @@ TEST(GameRulesOverTcp, LockstepWithRulesEqualsTheInProcessRun) {
   auto clients = physics_testing::connect_clients(server.exact_client_config("player"), 2);
   ASSERT_TRUE(clients) << clients.message();
 
-  // In-process: the same scene and rules, the players joined in the server's order.
+  // In-process: the same scene and rules, the players joined in the order the server
+  // joined them (their Hellos', which their body ids tell), under their client ids.
   server::Simulation reference(scene::default_scene(), {}, std::make_shared<CrateRules>());
-  std::vector<std::pair<std::uint32_t, std::size_t>> joined;  // client id, index
+  std::vector<std::pair<std::uint64_t, std::size_t>> joined;  // body id, index
   for (std::size_t k = 0; k < clients->size(); ++k) {
-    joined.push_back({(*clients)[k]->welcome().client_id, k});
+    joined.push_back({(*clients)[k]->welcome().body_id, k});
   }
   std::sort(joined.begin(), joined.end());
-  for (const auto& [id, k] : joined) {
-    const auto body = reference.join(id);
+  for (const auto& [body_id, k] : joined) {
+    const auto body = reference.join((*clients)[k]->welcome().client_id);
     ASSERT_TRUE(body.has_value());
-    EXPECT_EQ(body->packed(), (*clients)[k]->welcome().body_id);
+    EXPECT_EQ(body->packed(), body_id);
   }
   const std::uint64_t start = (*clients)[0]->welcome().current_tick;
   ASSERT_EQ(start, reference.current_tick());
