@@ -174,28 +174,35 @@ void FreeMotionPass::find_candidates(const FreeMotion& motion) {
   w_.candidates.list.clear();
   w_.candidates.first.assign(n + 1, 0);
   const bool few_fixed = w_.lists.fixed_boxes.size() <= kFewFixed;
+  // Pairs that may not collide (filters, sensors) are left out here, so that no
+  // later phase meets them; a world without filters or sensors tests nothing.
+  const bool filtering = w_.filtering();
   std::size_t next_pair = 0;
   for (std::uint32_t p = 0; p < n; ++p) {
     w_.candidates.first[p] = static_cast<std::uint32_t>(w_.candidates.list.size());
+    const std::uint32_t slot = w_.lists.active[p];
     if (few_fixed) {
       // A handful of static bodies (a container's walls): testing each is cheaper
       // than a grid query, and gives the same ones in the same (ascending) order.
       for (std::uint32_t f = 0; f < w_.lists.fixed_boxes.size(); ++f) {
         if (boxes_intersect(fat[p], w_.lists.fixed_boxes[f])) {
-          w_.candidates.list.push_back({w_.lists.active[p], w_.lists.fixed[f], p, kNone, true});
+          if (filtering && !w_.pair_collides(slot, w_.lists.fixed[f])) continue;
+          w_.candidates.list.push_back({slot, w_.lists.fixed[f], p, kNone, true});
         }
       }
     } else if (w_.lists.fixed_grid.size() > 0) {
       w_.lists.fixed_grid.find_overlaps(fat[p], x_.broadphase.overlaps);
       for (std::uint32_t f : x_.broadphase.overlaps) {
-        w_.candidates.list.push_back({w_.lists.active[p], w_.lists.fixed[f], p, kNone, true});
+        if (filtering && !w_.pair_collides(slot, w_.lists.fixed[f])) continue;
+        w_.candidates.list.push_back({slot, w_.lists.fixed[f], p, kNone, true});
       }
     }
     while (next_pair < x_.broadphase.active_pairs.size() &&
            x_.broadphase.active_pairs[next_pair].a == p) {
       const std::uint32_t q = x_.broadphase.active_pairs[next_pair].b;
-      w_.candidates.list.push_back({w_.lists.active[p], w_.lists.active[q], p, q, false});
       ++next_pair;
+      if (filtering && !w_.pair_collides(slot, w_.lists.active[q])) continue;
+      w_.candidates.list.push_back({slot, w_.lists.active[q], p, q, false});
     }
   }
   w_.candidates.first[n] = static_cast<std::uint32_t>(w_.candidates.list.size());

@@ -246,6 +246,15 @@ __attribute__((always_inline)) inline void VelocitySolver::gather_contact(std::u
   // A near miss is a speculative contact: the pair may close its gap (down to
   // the slop it keeps) within this sub-step, and no more.
   if (x_.marks.near_miss[c]) k.target = -std::max(x_.marks.gap[c] - near_miss_margin(), 0.0) / c_.h;
+  // A kinematic body is fixed for the iterations (its velocity counts as zero, as a
+  // static body's), so its motion is given as the contact's: the target closing
+  // velocity is measured against it, and the sliding (upper_slide) too. This is how
+  // it pushes what it meets and carries what rests on it.
+  k.upper_slide = 0.0;
+  if (cand.fixed && b.motion == Motion::Kinematic) {
+    k.target -= dot(b.velocity, k.normal);
+    k.upper_slide = dot(b.velocity, Vec2{-k.normal.y, k.normal.x});
+  }
   k.mu = mix_contact_friction(a.contact_friction, b.contact_friction) *
          load_on(cand.fixed, a, b, k.up);
   const WarmEntry* warm =
@@ -278,7 +287,8 @@ inline bool VelocitySolver::apply_contact_friction(ContactRecord& k, Vec2& va, V
                                                    double wb, double mass) {
   const Vec2 n = k.normal;
   const Vec2 t{-n.y, n.x};
-  const double sliding = dot((kFixed ? Vec2{} : vb) - va, t);
+  double sliding = dot((kFixed ? Vec2{} : vb) - va, t);
+  if (kFixed && k.upper_slide != 0.0) sliding += k.upper_slide;
   const double limit = k.mu * k.impulse;
   double& total = k.tangent_impulse;
   const double wanted = std::clamp(total - sliding * mass, -limit, limit);
