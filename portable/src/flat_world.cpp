@@ -80,10 +80,13 @@ void read_settings(Reader& in, phys::WorldSettings& s) {
   s.simd_contact_lanes = in.on("simd contact lanes");
 }
 
-phys::BodyDef read_body(Reader& in) {
+phys::BodyDef read_body(Reader& in, bool with_filters) {
   phys::BodyDef b;
   b.shape = in.whole("shape", 0, 1) == 0 ? phys::Shape::Circle : phys::Shape::Box;
-  b.motion = in.whole("motion", 0, 1) == 0 ? phys::Motion::Static : phys::Motion::Dynamic;
+  const std::int64_t motion = in.whole("motion", 0, with_filters ? 2 : 1);
+  b.motion = motion == 0   ? phys::Motion::Static
+             : motion == 1 ? phys::Motion::Dynamic
+                           : phys::Motion::Kinematic;
   b.position = in.vec("position");
   b.velocity = in.vec("velocity");
   b.acceleration = in.vec("acceleration");
@@ -93,15 +96,28 @@ phys::BodyDef read_body(Reader& in) {
   b.restitution = in.number("restitution");
   b.friction = in.vec("friction");
   b.contact_friction = in.number("contact friction");
+  if (with_filters) {
+    b.filter.category_bits = static_cast<std::uint32_t>(in.whole("category bits", 0, UINT32_MAX));
+    b.filter.mask_bits = static_cast<std::uint32_t>(in.whole("mask bits", 0, UINT32_MAX));
+    b.filter.group = static_cast<std::int32_t>(in.whole("group", INT32_MIN, INT32_MAX));
+    b.is_sensor = in.on("sensor");
+  }
   return b;
+}
+
+// Whether a body needs version 2's fields.
+bool needs_filters(const phys::BodyDef& b) {
+  return b.motion == phys::Motion::Kinematic || b.is_sensor || b.filter != phys::Filter{};
 }
 
 }  // namespace
 
 std::vector<double> flatten(const FlatWorld& world) {
   const phys::WorldSettings& s = world.settings;
+  bool with_filters = false;
+  for (const phys::BodyDef& b : world.bodies) with_filters = with_filters || needs_filters(b);
   std::vector<double> out = {
-      kFlatVersion,
+      with_filters ? kFlatVersionWithFilters : kFlatVersion,
       s.gravity.x,
       s.gravity.y,
       static_cast<double>(static_cast<int>(s.integrator)),
@@ -130,11 +146,14 @@ std::vector<double> flatten(const FlatWorld& world) {
       world.dt,
       static_cast<double>(world.bodies.size()),
   };
-  out.reserve(kFlatHeader + kFlatBodyFields * world.bodies.size());
+  out.reserve(kFlatHeader +
+              (with_filters ? kFlatBodyFieldsWithFilters : kFlatBodyFields) * world.bodies.size());
   for (const phys::BodyDef& b : world.bodies) {
     const double body[kFlatBodyFields] = {
         b.shape == phys::Shape::Circle ? 0.0 : 1.0,
-        b.motion == phys::Motion::Static ? 0.0 : 1.0,
+        b.motion == phys::Motion::Static    ? 0.0
+        : b.motion == phys::Motion::Dynamic ? 1.0
+                                            : 2.0,
         b.position.x,
         b.position.y,
         b.velocity.x,
@@ -151,13 +170,23 @@ std::vector<double> flatten(const FlatWorld& world) {
         b.contact_friction,
     };
     out.insert(out.end(), std::begin(body), std::end(body));
+    if (with_filters) {
+      out.push_back(static_cast<double>(b.filter.category_bits));
+      out.push_back(static_cast<double>(b.filter.mask_bits));
+      out.push_back(static_cast<double>(b.filter.group));
+      out.push_back(flag(b.is_sensor));
+    }
   }
   return out;
 }
 
 std::variant<FlatWorld, std::string> unflatten(std::span<const double> values) {
-  if (values.empty() || values[0] != kFlatVersion)
-    return std::string("value 0 (version) must be 1");
+  if (values.empty() || (values[0] != kFlatVersion && values[0] != kFlatVersionWithFilters))
+    return std::string("value 0 (version) must be 1 or 2");
+  const bool with_filters = values[0] == kFlatVersionWithFilters;
+  // Version 2's errors say so: its bodies are laid out differently.
+  const std::string what = with_filters ? "flat world version 2: " : "flat world: ";
+  const std::size_t body_fields = with_filters ? kFlatBodyFieldsWithFilters : kFlatBodyFields;
   if (values.size() < kFlatHeader)
     return "a flat world holds at least " + std::to_string(kFlatHeader) + " values, got " +
            std::to_string(values.size());
@@ -172,14 +201,14 @@ std::variant<FlatWorld, std::string> unflatten(std::span<const double> values) {
   if (const phys::SettingsError e = phys::check_settings(world.settings);
       e != phys::SettingsError::None)
     return std::string("flat world: settings refused: ") + phys::describe(e);
-  const std::size_t expected = kFlatHeader + kFlatBodyFields * static_cast<std::size_t>(count);
+  const std::size_t expected = kFlatHeader + body_fields * static_cast<std::size_t>(count);
   if (values.size() != expected)
-    return "flat world: " + std::to_string(count) + " bodies take " + std::to_string(expected) +
+    return what + std::to_string(count) + " bodies take " + std::to_string(expected) +
            " values, got " + std::to_string(values.size());
   world.bodies.reserve(static_cast<std::size_t>(count));
   for (std::int64_t i = 0; i < count; ++i) {
-    world.bodies.push_back(read_body(in));
-    if (!in.error().empty()) return "flat world: body " + std::to_string(i) + ": " + in.error();
+    world.bodies.push_back(read_body(in, with_filters));
+    if (!in.error().empty()) return what + "body " + std::to_string(i) + ": " + in.error();
   }
   return world;
 }

@@ -45,6 +45,14 @@ rec::BodyDef to_recorded(const phys::BodyDef& def) {
   out.set_restitution(def.restitution);
   *out.mutable_friction() = to_recorded(def.friction);
   out.set_contact_friction(def.contact_friction);
+  out.set_is_kinematic(def.motion == phys::Motion::Kinematic);
+  if (!(def.filter == phys::Filter{})) {
+    out.set_category_bits(def.filter.category_bits);
+    out.set_mask_bits(def.filter.mask_bits);
+    out.set_group(def.filter.group);
+  }
+  out.set_is_sensor(def.is_sensor);
+  out.set_name(def.name);
   return out;
 }
 
@@ -59,7 +67,10 @@ bool from_recorded(const rec::BodyDef& in, phys::BodyDef& def) {
     default:
       return false;
   }
-  def.motion = in.is_static() ? phys::Motion::Static : phys::Motion::Dynamic;
+  if (in.is_static() && in.is_kinematic()) return false;
+  def.motion = in.is_static()      ? phys::Motion::Static
+               : in.is_kinematic() ? phys::Motion::Kinematic
+                                   : phys::Motion::Dynamic;
   def.position = from_recorded(in.position());
   def.velocity = from_recorded(in.velocity());
   def.acceleration = from_recorded(in.acceleration());
@@ -69,6 +80,11 @@ bool from_recorded(const rec::BodyDef& in, phys::BodyDef& def) {
   def.restitution = in.restitution();
   def.friction = from_recorded(in.friction());
   def.contact_friction = in.contact_friction();
+  if (in.has_category_bits()) def.filter.category_bits = in.category_bits();
+  if (in.has_mask_bits()) def.filter.mask_bits = in.mask_bits();
+  def.filter.group = in.group();
+  def.is_sensor = in.is_sensor();
+  def.name = in.name();
   return true;
 }
 

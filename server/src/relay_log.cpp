@@ -48,6 +48,14 @@ void RelayLog::added(phys::BodyId id, const phys::BodyDef& def) {
   body.set_restitution(def.restitution);
   set_vec2(*body.mutable_friction(), def.friction);
   body.set_contact_friction(def.contact_friction);
+  body.set_is_kinematic(def.motion == phys::Motion::Kinematic);
+  if (!(def.filter == phys::Filter{})) {
+    body.set_category_bits(def.filter.category_bits);
+    body.set_mask_bits(def.filter.mask_bits);
+    body.set_group(def.filter.group);
+  }
+  body.set_is_sensor(def.is_sensor);
+  body.set_name(def.name);
 }
 
 void RelayLog::removed(phys::BodyId id) { next_change_slot().set_removed(id.packed()); }

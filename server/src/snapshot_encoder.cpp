@@ -28,6 +28,14 @@ void fill_body_shape(const phys::BodyState& body, physics::wire::BodyShape& shap
   shape.set_restitution(body.restitution);
   shape.mutable_friction()->set_x(body.friction.x);
   shape.mutable_friction()->set_y(body.friction.y);
+  shape.set_is_kinematic(body.motion == phys::Motion::Kinematic);
+}
+
+void fill_body_shape(const phys::BodyState& body, const phys::World& world,
+                     physics::wire::BodyShape& shape) {
+  fill_body_shape(body, shape);
+  shape.set_name(std::string(world.name(body.id)));
+  shape.set_is_sensor(world.is_sensor(body.id));
 }
 
 std::string snapshot_frame_header(std::size_t snapshot_bytes) {
@@ -52,8 +60,9 @@ physics::wire::ServerMessage make_welcome(const Simulation& simulation, std::uin
   welcome.set_body_id(body.packed());
   welcome.set_tick_rate(simulation.tick_rate());
   welcome.set_current_tick(simulation.current_tick());
-  simulation.world().for_each_body(
-      [&](const phys::BodyState& state) { fill_body_shape(state, *welcome.add_bodies()); });
+  simulation.world().for_each_body([&](const phys::BodyState& state) {
+    fill_body_shape(state, simulation.world(), *welcome.add_bodies());
+  });
   const phys::Vec2 gravity = simulation.world().settings().gravity;
   welcome.mutable_gravity()->set_x(gravity.x);
   welcome.mutable_gravity()->set_y(gravity.y);

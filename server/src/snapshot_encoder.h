@@ -18,6 +18,9 @@ namespace server {
 std::string snapshot_frame_header(std::size_t snapshot_bytes);
 
 void fill_body_shape(const phys::BodyState& body, physics::wire::BodyShape& shape);
+// The same, with what the world knows beside the state: the body's name and sensor flag.
+void fill_body_shape(const phys::BodyState& body, const phys::World& world,
+                     physics::wire::BodyShape& shape);
 
 // The Welcome a client gets after its Hello was accepted.
 physics::wire::ServerMessage make_welcome(const Simulation& simulation, std::uint32_t client_id,

@@ -152,7 +152,7 @@ std::string SnapshotFeeds::tail_for(Feed& feed, const ClientFields& fields,
   }
   for (const std::uint64_t id : feed.added) {
     if (const auto body = world.body(phys::BodyId::from_packed(id))) {
-      fill_body_shape(*body, *own.add_added());
+      fill_body_shape(*body, world, *own.add_added());
     }
   }
   for (const std::uint64_t id : feed.removed) own.add_removed(id);

@@ -68,6 +68,28 @@ TEST(FlatWorld, EverySceneFileRunsAsItselfAfterAJsonRoundTrip) {
   EXPECT_GE(scenes, 6);
 }
 
+TEST(FlatWorld, OnlyAWorldWithFiltersSensorsOrKinematicBodiesIsVersion2) {
+  const std::filesystem::path dir = PHYSICS_SCENES_DIR;
+  EXPECT_EQ(flat_of(load(dir / "platformer.textproto"))[0], kFlatVersion);
+  const std::vector<double> rules = flat_of(load(dir / "rules-room.textproto"));
+  EXPECT_EQ(rules[0], kFlatVersionWithFilters);
+  const FlatWorld flat = value_or_fail(unflatten(rules));
+  const scene::SceneDef def = load(dir / "rules-room.textproto");
+  ASSERT_EQ(flat.bodies.size(), def.bodies.size());
+  for (std::size_t i = 0; i < def.bodies.size(); ++i) {
+    EXPECT_EQ(flat.bodies[i].motion, def.bodies[i].motion) << i;
+    EXPECT_EQ(flat.bodies[i].filter, def.bodies[i].filter) << i;
+    EXPECT_EQ(flat.bodies[i].is_sensor, def.bodies[i].is_sensor) << i;
+  }
+  // A version 2 body's fields are checked as the others are.
+  std::vector<double> bad = rules;
+  bad[kFlatHeader + kFlatBodyFields + 2] = 3e9;  // the first body's group
+  const auto refused = unflatten(bad);
+  ASSERT_TRUE(std::holds_alternative<std::string>(refused));
+  EXPECT_NE(std::get<std::string>(refused).find("version 2: body 0: value"), std::string::npos)
+      << std::get<std::string>(refused);
+}
+
 TEST(FlatWorld, NumbersKeepEveryBitThroughJson) {
   const std::vector<double> values = {1.0 / 3.0, -0.0, 5e-324, 1.7976931348623157e308, -9.81, 0.1};
   const std::vector<double> back = value_or_fail(from_json(to_json(values)));

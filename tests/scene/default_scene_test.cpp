@@ -133,6 +133,7 @@ TEST(ExampleScenes, EveryFileRunsToTheSameHashTwice) {
       {"large-4000.textproto", 0x86da865e12834da6ull},
       {"moving-1000.textproto", 0x99d7e7c9c55ad2b8ull},
       {"platformer.textproto", 0xe426fe342b13762bull},
+      {"rules-room.textproto", 0x724417fb37bae941ull},
   };
   for (const auto& file : example_files()) {
     SCOPED_TRACE(file.string());

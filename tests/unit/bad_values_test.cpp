@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <string>
 #include <string_view>
 
 #include "physics_test_support.h"
@@ -142,6 +143,45 @@ TEST(BadBodyDef, TooManyBodies) {
   EXPECT_EQ(world.body_count(), 3u);
 }
 
+TEST(BadBodyDef, AKinematicBodyWithAnAccelerationIsRefused) {
+  World world;
+  BodyDef def = box_def({0.0, 0.0}, {0.5, 0.5}, Motion::Kinematic);
+  def.acceleration = {0.0, 1.0};
+  BodyDefError error = BodyDefError::None;
+  EXPECT_FALSE(world.add_body(def, &error).is_valid());
+  EXPECT_EQ(error, BodyDefError::KinematicAcceleration);
+  // Its mass is ignored (infinite), as a static body's; its velocity is checked.
+  def.acceleration = {};
+  def.mass = -1.0;
+  def.velocity = {kNaN, 0.0};
+  EXPECT_FALSE(world.add_body(def, &error).is_valid());
+  EXPECT_EQ(error, BodyDefError::NonFiniteVelocity);
+  def.velocity = {1.0, 0.0};
+  EXPECT_TRUE(world.add_body(def, &error).is_valid());
+}
+
+TEST(BadBodyDef, ANameLongerThanTheLimitIsRefused) {
+  World world;
+  BodyDef def = box_def({0.0, 0.0}, {0.5, 0.5});
+  def.name = std::string(kMaxBodyNameBytes + 1, 'a');
+  BodyDefError error = BodyDefError::None;
+  EXPECT_FALSE(world.add_body(def, &error).is_valid());
+  EXPECT_EQ(error, BodyDefError::BadName);
+  def.name.pop_back();
+  EXPECT_TRUE(world.add_body(def, &error).is_valid());
+}
+
+TEST(BadInputsKinematic, AStaticBodyTakesNoVelocityAKinematicOneTakesOnlyFiniteOnes) {
+  World world;
+  const BodyId wall = add_or_fail(world, box_def({0.0, 0.0}, {0.5, 0.5}, Motion::Static));
+  const BodyId platform = add_or_fail(world, box_def({3.0, 0.0}, {0.5, 0.5}, Motion::Kinematic));
+  EXPECT_FALSE(world.set_velocity(wall, {1.0, 0.0}));
+  EXPECT_FALSE(world.set_velocity(platform, {kNaN, 0.0}));
+  EXPECT_FALSE(world.set_velocity(platform, {0.0, kInf}));
+  EXPECT_TRUE(world.set_velocity(platform, {1.0, 0.0}));
+  EXPECT_FALSE(world.set_acceleration(platform, {1.0, 0.0}));
+}
+
 TEST(BadBodyDef, PositionBeyondTheCoordinateLimit) {
   for (const Vec2 far : {Vec2{-1.0e308, 0.0}, Vec2{1.0e308, 0.0}, Vec2{0.0, 1.0e7 * 1.0000001}}) {
     BodyDef def = good_circle();
@@ -185,7 +225,8 @@ TEST(BadBodyDef, EveryErrorHasADescription) {
        {BodyDefError::NonFinitePosition, BodyDefError::NonFiniteVelocity,
         BodyDefError::NonFiniteAcceleration, BodyDefError::BadRadius, BodyDefError::BadHalfExtents,
         BodyDefError::BadMass, BodyDefError::BadRestitution, BodyDefError::BadFriction,
-        BodyDefError::OutOfBounds, BodyDefError::TooLarge, BodyDefError::TooManyBodies}) {
+        BodyDefError::OutOfBounds, BodyDefError::TooLarge, BodyDefError::TooManyBodies,
+        BodyDefError::KinematicAcceleration, BodyDefError::BadName}) {
     EXPECT_FALSE(describe(error).empty());
     EXPECT_NE(describe(error), describe(BodyDefError::None));
   }

@@ -19,6 +19,11 @@
 //   then N bodies of 16: shape (0 circle, 1 box); motion (0 static, 1 dynamic);
 //              position x, y; velocity x, y; acceleration x, y; radius; half
 //              extents x, y; mass; restitution; friction x, y; contact friction
+// Version 2, written only when a body is kinematic, filtered or a sensor (so that
+// every other world stays version 1): the same, but [0] is 2, motion may be 2
+// (kinematic), and each body has 4 values more (20): category bits, mask bits,
+// group (whole numbers in the ranges of phys::Filter's fields); sensor (0/1).
+// Names are not carried: they are not in the state hash.
 #include <cstddef>
 #include <span>
 #include <string>
@@ -33,8 +38,10 @@
 namespace portable {
 
 inline constexpr double kFlatVersion = 1.0;
+inline constexpr double kFlatVersionWithFilters = 2.0;
 inline constexpr std::size_t kFlatHeader = 28;
 inline constexpr std::size_t kFlatBodyFields = 16;
+inline constexpr std::size_t kFlatBodyFieldsWithFilters = 20;
 
 struct FlatWorld {
   phys::WorldSettings settings;

@@ -28,6 +28,10 @@ std::string_view describe(BodyDefError error) {
       return "the body is larger than the world's size limit";
     case BodyDefError::TooManyBodies:
       return "the world holds its maximum number of bodies";
+    case BodyDefError::KinematicAcceleration:
+      return "a kinematic body moves by its velocity alone: its acceleration must be zero";
+    case BodyDefError::BadName:
+      return "the name is longer than 256 bytes";
   }
   return "unknown error";
 }

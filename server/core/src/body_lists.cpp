@@ -43,6 +43,12 @@ void WorldImpl::rebuild_lists() {
   changed_slots_.clear();
   rebuild_all_ = false;
   lists.joined = kept == 0 ? 0 : lists.active.size() - kept;
+  lists.kinematic.clear();
+  if (kinematic_count_ != 0) {
+    for (std::uint32_t f = 0; f < lists.fixed.size(); ++f) {
+      if (bodies[lists.fixed[f]].motion == Motion::Kinematic) lists.kinematic.push_back(f);
+    }
+  }
   lists.fixed_grid.build(lists.fixed_boxes);
   lists_dirty_ = false;
   candidates.valid = false;

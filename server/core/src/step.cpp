@@ -13,6 +13,7 @@ namespace phys {
 namespace {
 
 void run_sub_step(WorldImpl& w, double h) {
+  if (w.kinematic_count() != 0) move_kinematic_bodies(w, h);
   const BodyLists& lists = w.current_lists();
   w.counters.sleeping_bodies_skipped += lists.fixed_sleeping;
   if (lists.active.empty()) return;
@@ -98,6 +99,9 @@ void WorldImpl::step(double dt) {
     PhaseTimer t(settings.profile, profile.contact_events);
     counters.contact_events += contact_tracker.finish(steps, bodies);
   }
+  // Sensor events, after the whole step: in a world without sensors, nothing (once
+  // the last overlaps of removed sensors have ended).
+  if (!sensors.empty() || !sensor_tracker.idle()) sensor_tracker.update(steps, *this);
   if (settings.profile) {
     profile.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -55,6 +55,11 @@ class FreeMotionPass : StepPhase {
  private:
   template <bool kPrefetch>
   FreeMotion run();
+  // The candidate pairs from the grids' overlaps; with kFilter, only the pairs that
+  // may collide (filters, sensors). Built apart, so that a world without filters
+  // carries no trace of the test.
+  template <bool kFilter>
+  void collect_candidates();
 
   Order order_;
 };
@@ -171,6 +176,19 @@ void FreeMotionPass::find_candidates(const FreeMotion& motion) {
   x_.broadphase.active_grid.build(fat);
   x_.broadphase.active_grid.find_pairs(x_.broadphase.active_pairs);
 
+  // Pairs that may not collide (filters, sensors) are left out here, so that no
+  // later phase meets them.
+  if (w_.filtering()) {
+    collect_candidates<true>();
+  } else {
+    collect_candidates<false>();
+  }
+}
+
+template <bool kFilter>
+inline void FreeMotionPass::collect_candidates() {
+  const std::size_t n = w_.lists.active.size();
+  const auto& fat = w_.candidates.fat_boxes;
   w_.candidates.list.clear();
   w_.candidates.first.assign(n + 1, 0);
   const bool few_fixed = w_.lists.fixed_boxes.size() <= kFewFixed;
@@ -182,19 +200,23 @@ void FreeMotionPass::find_candidates(const FreeMotion& motion) {
       // than a grid query, and gives the same ones in the same (ascending) order.
       for (std::uint32_t f = 0; f < w_.lists.fixed_boxes.size(); ++f) {
         if (boxes_intersect(fat[p], w_.lists.fixed_boxes[f])) {
+          if (kFilter && !w_.pair_collides(w_.lists.active[p], w_.lists.fixed[f])) continue;
           w_.candidates.list.push_back({w_.lists.active[p], w_.lists.fixed[f], p, kNone, true});
         }
       }
     } else if (w_.lists.fixed_grid.size() > 0) {
       w_.lists.fixed_grid.find_overlaps(fat[p], x_.broadphase.overlaps);
       for (std::uint32_t f : x_.broadphase.overlaps) {
+        if (kFilter && !w_.pair_collides(w_.lists.active[p], w_.lists.fixed[f])) continue;
         w_.candidates.list.push_back({w_.lists.active[p], w_.lists.fixed[f], p, kNone, true});
       }
     }
     while (next_pair < x_.broadphase.active_pairs.size() &&
            x_.broadphase.active_pairs[next_pair].a == p) {
       const std::uint32_t q = x_.broadphase.active_pairs[next_pair].b;
-      w_.candidates.list.push_back({w_.lists.active[p], w_.lists.active[q], p, q, false});
+      if (!kFilter || w_.pair_collides(w_.lists.active[p], w_.lists.active[q])) {
+        w_.candidates.list.push_back({w_.lists.active[p], w_.lists.active[q], p, q, false});
+      }
       ++next_pair;
     }
   }

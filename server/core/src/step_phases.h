@@ -16,6 +16,10 @@
 
 namespace phys {
 
+// step_kinematic.cpp: the kinematic bodies move by their velocity (with lists.kinematic
+// not empty), first in the sub-step.
+void move_kinematic_bodies(WorldImpl& w, double h);
+
 // step_order.cpp: the processing order of the awake bodies, lowest first.
 struct Order {
   bool changed;    // the order is not last sub-step's (the candidate pairs are stale)

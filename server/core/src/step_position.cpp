@@ -389,7 +389,11 @@ inline bool PositionPass::separate(const Candidate& cand, Body& a, Body& b, Vec2
 inline void PositionPass::hold_by_static_friction(const Candidate& cand, Body& a, Body& b, Vec2 n,
                                                   double push, double wa, double wb) {
   const Vec2 moved_a = a.position - x_.motion.step_start[cand.lower_pos];
-  const Vec2 moved_b = cand.fixed ? Vec2{} : b.position - x_.motion.step_start[cand.upper_pos];
+  Vec2 moved_b = cand.fixed ? Vec2{} : b.position - x_.motion.step_start[cand.upper_pos];
+  // A fixed body moved only if kinematic: by its velocity over the sub-step.
+  if (cand.fixed && w_.kinematic_count() != 0 && b.motion == Motion::Kinematic) {
+    moved_b = b.velocity * c_.h;
+  }
   const Vec2 relative = moved_b - moved_a;
   const Vec2 slide = relative - n * dot(relative, n);
   const double mu = mix_contact_friction(a.contact_friction, b.contact_friction) *
@@ -435,7 +439,11 @@ inline void PositionPass::record_near_miss(const Candidate& cand, Vec2 n, double
   // It is a contact only while the pair rests on each other, approaching no faster
   // than the rest speed: a faster approach is a collision, which the next step
   // finds as an overlap and bounces.
-  const Vec2 vb = cand.fixed ? Vec2{} : body(cand.upper).velocity;
+  Vec2 vb = cand.fixed ? Vec2{} : body(cand.upper).velocity;
+  // A kinematic body's velocity is its own, though it is fixed.
+  if (cand.fixed && w_.kinematic_count() != 0 && body(cand.upper).motion == Motion::Kinematic) {
+    vb = body(cand.upper).velocity;
+  }
   if (dot(vb - body(cand.lower).velocity, n) < -c_.rest_speed) return;
   const auto c = static_cast<std::uint32_t>(&cand - w_.candidates.list.data());
   if (x_.marks.contact_of[c] != kNone && !x_.marks.near_miss[c]) return;

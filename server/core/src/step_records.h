@@ -36,6 +36,10 @@ struct ContactRecord {
   double mu;               // contact friction, mixed
   double impulse;          // accumulated normal impulse
   double tangent_impulse;  // accumulated friction impulse
+  // A kinematic upper body's velocity along the tangent (-normal.y, normal.x); 0 for
+  // any other; written and read only in a world with kinematic bodies. (Its velocity
+  // along the normal is taken out of `target`.)
+  double upper_slide;
   std::uint32_t upper_generation;
   bool fixed;  // upper is a static or sleeping body
 };

@@ -101,6 +101,10 @@ struct StepScratch {
   // (step_sleep.cpp) at the end of the sub-step.
   std::vector<std::uint32_t> to_wake;
 
+  // Written and read by move_kinematic_bodies (step_kinematic.cpp) alone: the fixed
+  // bodies a kinematic body's move passes.
+  std::vector<std::uint32_t> kinematic_near;
+
   // Written and read by update_sleep (step_sleep.cpp) alone.
   struct Sleep {
     std::vector<std::uint8_t> still_ready;  // per position: still for sleep_time

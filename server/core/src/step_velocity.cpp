@@ -21,19 +21,20 @@ class VelocitySolver : StepPhase {
                  const FreeMotion& motion)
       : StepPhase(ctx, world),
         scattered_(order.scattered),
-        any_contact_friction_(motion.any_contact_friction) {}
+        any_contact_friction_(motion.any_contact_friction),
+        kinematic_(world.kinematic_count() != 0) {}
   std::span<const ContactRecord> run();
 
  private:
-  template <bool kFriction>
+  template <bool kFriction, bool kKinematic>
   static void solve_contacts(std::span<ContactRecord> contacts, Vec2* solver,
                              std::uint8_t* supported, bool shock, bool first_iteration,
                              bool& changed);
-  template <bool kFixed, bool kFriction>
+  template <bool kFixed, bool kFriction, bool kKinematic>
   static void solve_contact(ContactRecord& k, Vec2* solver, std::uint8_t* supported, bool shock,
                             bool first_iteration, bool& changed);
   void gather_contact(std::uint32_t c);
-  template <bool kFixed>
+  template <bool kFixed, bool kKinematic>
   static bool apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa, double wb,
                                      double mass);
   void update_held();
@@ -44,6 +45,9 @@ class VelocitySolver : StepPhase {
 
   const bool scattered_;             // the processing order is far from slot order
   const bool any_contact_friction_;  // an awake body has contact friction
+  // The world has kinematic bodies: contacts with them carry their velocity (and
+  // only then is ContactRecord::upper_slide written and read).
+  const bool kinematic_;
   bool lanes_ = false;               // the iterations run in ContactLanes
   std::uint32_t contact_count_ = 0;  // records in use at the front of scratch.velocity.contacts
 };
@@ -123,9 +127,13 @@ std::span<const ContactRecord> VelocitySolver::run() {
       x_.supported.assign(w_.lists.active.size(), 0);
       std::uint8_t* const supported = x_.supported.data();
       if (any_contact_friction_) {
-        solve_contacts<true>(contacts, solver, supported, shock, iteration == 0, changed);
+        if (kinematic_) {
+          solve_contacts<true, true>(contacts, solver, supported, shock, iteration == 0, changed);
+        } else {
+          solve_contacts<true, false>(contacts, solver, supported, shock, iteration == 0, changed);
+        }
       } else {
-        solve_contacts<false>(contacts, solver, supported, shock, iteration == 0, changed);
+        solve_contacts<false, false>(contacts, solver, supported, shock, iteration == 0, changed);
       }
     }
     if (!changed && iteration > 0) break;
@@ -144,15 +152,17 @@ std::span<const ContactRecord> VelocitySolver::run() {
 
 // One iteration over the contacts. Built apart for scenes with contact friction
 // and without (kFriction): without it, no contact has friction to apply.
-template <bool kFriction>
+template <bool kFriction, bool kKinematic>
 inline void VelocitySolver::solve_contacts(std::span<ContactRecord> contacts, Vec2* solver,
                                            std::uint8_t* supported, bool shock,
                                            bool first_iteration, bool& changed) {
   for (ContactRecord& k : contacts) {
     if (k.fixed) {
-      solve_contact<true, kFriction>(k, solver, supported, shock, first_iteration, changed);
+      solve_contact<true, kFriction, kKinematic>(k, solver, supported, shock, first_iteration,
+                                                 changed);
     } else {
-      solve_contact<false, kFriction>(k, solver, supported, shock, first_iteration, changed);
+      solve_contact<false, kFriction, kKinematic>(k, solver, supported, shock, first_iteration,
+                                                  changed);
     }
   }
 }
@@ -160,7 +170,7 @@ inline void VelocitySolver::solve_contacts(std::span<ContactRecord> contacts, Ve
 // One contact in one iteration of the velocity solver, built apart for contacts
 // with a fixed body (no velocity of its own) and between two awake bodies, so
 // that neither carries the other's tests.
-template <bool kFixed, bool kFriction>
+template <bool kFixed, bool kFriction, bool kKinematic>
 inline void VelocitySolver::solve_contact(ContactRecord& k, Vec2* solver, std::uint8_t* supported,
                                           bool shock, bool first_iteration, bool& changed) {
   Vec2 fixed_velocity{};  // what vb names for a fixed body; never read
@@ -200,7 +210,7 @@ inline void VelocitySolver::solve_contact(ContactRecord& k, Vec2* solver, std::u
       k.tangent_impulse = std::clamp(k.warm_tangent, -limit, limit);
       va -= t * (k.tangent_impulse * wa);
       if (!kFixed) vb += t * (k.tangent_impulse * wb);
-      apply_contact_friction<kFixed>(k, va, vb, wa, wb, mass);
+      apply_contact_friction<kFixed, kKinematic>(k, va, vb, wa, wb, mass);
     }
     return;
   }
@@ -218,7 +228,7 @@ inline void VelocitySolver::solve_contact(ContactRecord& k, Vec2* solver, std::u
     changed = changed | (std::fabs(impulse) > 1.0e-12);
   }
   if (kFriction && k.mu > 0.0) {
-    changed = apply_contact_friction<kFixed>(k, va, vb, wa, wb, mass) || changed;
+    changed = apply_contact_friction<kFixed, kKinematic>(k, va, vb, wa, wb, mass) || changed;
   }
 }
 
@@ -246,6 +256,17 @@ __attribute__((always_inline)) inline void VelocitySolver::gather_contact(std::u
   // A near miss is a speculative contact: the pair may close its gap (down to
   // the slop it keeps) within this sub-step, and no more.
   if (x_.marks.near_miss[c]) k.target = -std::max(x_.marks.gap[c] - near_miss_margin(), 0.0) / c_.h;
+  // A kinematic body is fixed for the iterations (its velocity counts as zero, as a
+  // static body's), so its motion is given as the contact's: the target closing
+  // velocity is measured against it, and the sliding (upper_slide) too. This is how
+  // it pushes what it meets and carries what rests on it.
+  if (kinematic_) {
+    k.upper_slide = 0.0;
+    if (cand.fixed && b.motion == Motion::Kinematic) {
+      k.target -= dot(b.velocity, k.normal);
+      k.upper_slide = dot(b.velocity, Vec2{-k.normal.y, k.normal.x});
+    }
+  }
   k.mu = mix_contact_friction(a.contact_friction, b.contact_friction) *
          load_on(cand.fixed, a, b, k.up);
   const WarmEntry* warm =
@@ -273,12 +294,13 @@ __attribute__((always_inline)) inline void VelocitySolver::gather_contact(std::u
 
 // Coulomb friction: the tangential impulse accumulated on a contact stays within
 // mu times its normal impulse (a contact that pushes nothing holds nothing).
-template <bool kFixed>
+template <bool kFixed, bool kKinematic>
 inline bool VelocitySolver::apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa,
                                                    double wb, double mass) {
   const Vec2 n = k.normal;
   const Vec2 t{-n.y, n.x};
-  const double sliding = dot((kFixed ? Vec2{} : vb) - va, t);
+  double sliding = dot((kFixed ? Vec2{} : vb) - va, t);
+  if (kFixed && kKinematic) sliding += k.upper_slide;
   const double limit = k.mu * k.impulse;
   double& total = k.tangent_impulse;
   const double wanted = std::clamp(total - sliding * mass, -limit, limit);

@@ -55,6 +55,9 @@ BodyDefError WorldImpl::check(const BodyDef& def) const {
     }
   }
   if (def.motion == Motion::Dynamic && !positive(def.mass)) return BodyDefError::BadMass;
+  if (def.motion == Motion::Kinematic && def.acceleration != Vec2{}) {
+    return BodyDefError::KinematicAcceleration;
+  }
   if (!std::isfinite(def.restitution) || def.restitution < 0.0 || def.restitution > 1.0) {
     return BodyDefError::BadRestitution;
   }
@@ -65,6 +68,7 @@ BodyDefError WorldImpl::check(const BodyDef& def) const {
   if (settings.has_bounds && !contains(settings.bounds, def.position)) {
     return BodyDefError::OutOfBounds;
   }
+  if (def.name.size() > kMaxBodyNameBytes) return BodyDefError::BadName;
   if (alive_count_ >= settings.max_bodies) return BodyDefError::TooManyBodies;
   return BodyDefError::None;
 }
@@ -84,6 +88,8 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
     warm.emplace_back();
     warm_count.push_back(0);
     warm_first.push_back(kWarmInSlot);
+    filters.emplace_back();
+    names.emplace_back();
   }
   Body& b = bodies[index];
   warm_count[index] = 0;
@@ -108,6 +114,17 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
     b.mass = def.mass;
     b.inv_mass = 1.0 / def.mass;
     ++dynamic_count_;
+  } else if (def.motion == Motion::Kinematic) {
+    b.velocity = clamp_counted(def.velocity, settings.max_speed, counters.speed_clamps);
+    ++kinematic_count_;
+  }
+  filters[index] = {def.filter, def.is_sensor};
+  if (!filters[index].is_default()) ++filtered_count_;
+  if (def.is_sensor) sensors.insert(std::upper_bound(sensors.begin(), sensors.end(), index), index);
+  names[index] = def.name;
+  if (!def.name.empty()) {
+    const std::pair<std::string, std::uint32_t> entry{def.name, index};
+    name_index.insert(std::upper_bound(name_index.begin(), name_index.end(), entry), entry);
   }
   ++alive_count_;
   lists_dirty_ = true;
@@ -129,13 +146,20 @@ bool WorldImpl::remove_body(BodyId id) {
   // Whatever rested on it must notice it is gone.
   const Aabb around{b->position - b->half - Vec2{settings.slop, settings.slop} * 2.0,
                     b->position + b->half + Vec2{settings.slop, settings.slop} * 2.0};
-  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    Body& o = bodies[i];
-    if (o.alive && o.is_dynamic() && !o.awake && i != id.index) {
-      if (boxes_intersect(o.bounds(), around)) wake(i);
-    }
-  }
+  wake_in(around, id.index);
   if (b->is_dynamic()) --dynamic_count_;
+  if (b->motion == Motion::Kinematic) --kinematic_count_;
+  BodyFilter& filter = filters[id.index];
+  if (!filter.is_default()) --filtered_count_;
+  if (filter.sensor) {
+    sensors.erase(std::lower_bound(sensors.begin(), sensors.end(), id.index));
+  }
+  filter = {};
+  if (!names[id.index].empty()) {
+    const std::pair<std::string, std::uint32_t> entry{names[id.index], id.index};
+    name_index.erase(std::lower_bound(name_index.begin(), name_index.end(), entry));
+    names[id.index].clear();
+  }
   --alive_count_;
   if (contact_events_on) contact_tracker.removed(id.index);
   b->alive = false;
@@ -143,6 +167,37 @@ bool WorldImpl::remove_body(BodyId id) {
   lists_dirty_ = true;
   rebuild_all_ = true;
   return true;
+}
+
+void WorldImpl::wake_in(const Aabb& around, std::uint32_t except) {
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    Body& o = bodies[i];
+    if (o.alive && o.is_dynamic() && !o.awake && i != except) {
+      if (boxes_intersect(o.bounds(), around)) wake(i);
+    }
+  }
+}
+
+void WorldImpl::set_filter(std::uint32_t slot, const Filter& filter) {
+  BodyFilter& f = filters[slot];
+  if (f.filter == filter) return;
+  if (!f.is_default()) --filtered_count_;
+  f.filter = filter;
+  if (!f.is_default()) ++filtered_count_;
+  // Pairs it may meet now, or no longer: found anew, with whatever rests on it or
+  // under it awake to notice.
+  const Body& b = bodies[slot];
+  const Vec2 margin{2.0 * settings.slop, 2.0 * settings.slop};
+  wake_in({b.position - b.half - margin, b.position + b.half + margin}, kNoSlot);
+  wake(slot);
+  candidates.valid = false;
+}
+
+std::uint32_t WorldImpl::find_name(std::string_view name) const {
+  const auto it = std::lower_bound(name_index.begin(), name_index.end(), name,
+                                   [](const std::pair<std::string, std::uint32_t>& e,
+                                      std::string_view n) { return e.first < n; });
+  return it != name_index.end() && it->first == name ? it->second : kNoSlot;
 }
 
 void WorldImpl::wake(std::uint32_t index) {
@@ -192,6 +247,15 @@ std::uint64_t WorldImpl::state_hash() const {
     h.mix_double(b.acceleration.y);
     h.mix_double(b.half.x);
     h.mix_double(b.half.y);
+    // Filters and sensors only where they are not the default, so that a world
+    // without them hashes as it did before they existed. (A kinematic body's motion
+    // is in the word above; names are labels, not state of the physics.)
+    if (filtered_count_ != 0 && !filters[i].is_default()) {
+      const BodyFilter& f = filters[i];
+      h.mix(f.filter.category_bits | (static_cast<std::uint64_t>(f.filter.mask_bits) << 32));
+      h.mix(static_cast<std::uint32_t>(f.filter.group) |
+            (static_cast<std::uint64_t>(f.sensor ? 1 : 0) << 32));
+    }
   }
   return h.value();
 }
@@ -277,6 +341,13 @@ bool World::set_acceleration(BodyId id, Vec2 acceleration) {
 bool World::set_position(BodyId id, Vec2 position) {
   Body* b = impl_->find(id);
   if (!b || !within_coordinate_limit(position)) return false;
+  if (b->motion == Motion::Kinematic) {
+    // A kinematic body led along a path by hand wakes what sleeps where it goes.
+    const Vec2 margin{2.0 * impl_->settings.slop, 2.0 * impl_->settings.slop};
+    const Vec2 low{std::min(b->position.x, position.x), std::min(b->position.y, position.y)};
+    const Vec2 high{std::max(b->position.x, position.x), std::max(b->position.y, position.y)};
+    impl_->wake_in({low - b->half - margin, high + b->half + margin}, id.index);
+  }
   b->position = position;
   b->still_time = 0.0;
   impl_->wake(id.index);
@@ -287,7 +358,7 @@ bool World::set_position(BodyId id, Vec2 position) {
 
 bool World::set_velocity(BodyId id, Vec2 velocity) {
   Body* b = impl_->find(id);
-  if (!b || !b->is_dynamic() || !is_finite(velocity)) return false;
+  if (!b || b->motion == Motion::Static || !is_finite(velocity)) return false;
   velocity = clamp_counted(velocity, impl_->settings.max_speed, impl_->counters.speed_clamps);
   b->velocity = velocity;
   impl_->wake(id.index);
@@ -311,6 +382,38 @@ void World::for_each_body(const std::function<void(const BodyState&)>& visit) co
     if (impl_->bodies[i].alive) visit(impl_->state_of(i));
   }
 }
+
+std::optional<BodyId> World::find_body(std::string_view name) const {
+  if (name.empty()) return std::nullopt;
+  const std::uint32_t slot = impl_->find_name(name);
+  if (slot == WorldImpl::kNoSlot) return std::nullopt;
+  return BodyId{slot, impl_->bodies[slot].generation};
+}
+
+std::string_view World::name(BodyId id) const {
+  if (!impl_->find(id)) return {};
+  return impl_->names[id.index];
+}
+
+std::optional<Filter> World::filter(BodyId id) const {
+  if (!impl_->find(id)) return std::nullopt;
+  return impl_->filters[id.index].filter;
+}
+
+bool World::set_filter(BodyId id, const Filter& filter) {
+  if (!impl_->find(id)) return false;
+  impl_->set_filter(id.index, filter);
+  return true;
+}
+
+bool World::is_sensor(BodyId id) const {
+  return impl_->find(id) != nullptr && impl_->filters[id.index].sensor;
+}
+
+const std::vector<SensorEvent>& World::sensor_events() const {
+  return impl_->sensor_tracker.events();
+}
+std::size_t World::sensor_overlaps() const { return impl_->sensor_tracker.overlap_count(); }
 
 std::size_t World::body_count() const { return impl_->alive_count(); }
 

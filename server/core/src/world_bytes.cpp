@@ -138,6 +138,15 @@ void numbers(A& a, std::vector<T>& v) {
   array(a, v, sizeof(T), [&](T& x) { field(a, x); });
 }
 
+// A string: its length, then its bytes.
+template <class A>
+void text(A& a, std::string& s) {
+  std::size_t n = s.size();
+  a.count(n, 1);
+  if constexpr (A::kReading) s.assign(n, '\0');
+  for (std::size_t i = 0; i < n && a.ok(); ++i) a.number(s[i]);
+}
+
 template <class A>
 void settings_fields(A& a, WorldSettings& s) {
   field(a, s.gravity);
@@ -251,6 +260,33 @@ void state_fields(A& a, WorldImpl& w) {
   field(a, w.lists_dirty_);
   field(a, w.rebuild_all_);
   numbers(a, w.changed_slots_);
+  // The vocabulary: filters, names, sensors and kinematic bodies.
+  array(a, w.filters, 13, [&](BodyFilter& f) {
+    field(a, f.filter.category_bits);
+    field(a, f.filter.mask_bits);
+    field(a, f.filter.group);
+    field(a, f.sensor);
+  });
+  array(a, w.names, 8, [&](std::string& name) { text(a, name); });
+  array(a, w.name_index, 12, [&](std::pair<std::string, std::uint32_t>& entry) {
+    text(a, entry.first);
+    field(a, entry.second);
+  });
+  numbers(a, w.sensors);
+  w.sensor_tracker.state_fields(a);
+  numbers(a, w.lists.kinematic);
+  field(a, w.kinematic_count_);
+  field(a, w.filtered_count_);
+}
+
+template <class A>
+void SensorTracker::state_fields(A& a) {
+  array(a, current_, 16, [&](Pair& p) {
+    field(a, p.sensor);
+    field(a, p.sensor_generation);
+    field(a, p.visitor);
+    field(a, p.visitor_generation);
+  });
 }
 
 template <class A>
@@ -282,7 +318,8 @@ std::string check_read_state(const WorldImpl& w) {
   for (std::size_t i = 0; i < slots; ++i) {
     const Body& b = w.bodies[i];
     if (b.shape != Shape::Circle && b.shape != Shape::Box) return "a body has an unknown shape";
-    if (b.motion != Motion::Static && b.motion != Motion::Dynamic) {
+    if (b.motion != Motion::Static && b.motion != Motion::Dynamic &&
+        b.motion != Motion::Kinematic) {
       return "a body has an unknown motion";
     }
     const double numbers[] = {b.position.x,     b.position.y,     b.half.x, b.half.y,
@@ -318,6 +355,18 @@ std::string check_read_state(const WorldImpl& w) {
     if (s >= slots || w.bodies[s].alive) return "a free slot is out of range or holds a body";
   }
   if (w.lists.joined > w.lists.active.size()) return "more joined bodies than awake ones";
+  if (w.filters.size() != slots || w.names.size() != slots) {
+    return "its filters or names do not have one entry per body slot";
+  }
+  for (const auto& [name, slot] : w.name_index) {
+    if (slot >= slots) return "a name names a slot that does not exist";
+  }
+  if (!in_slots(w.sensors)) return "a sensor names a slot that does not exist";
+  for (const std::uint32_t k : w.lists.kinematic) {
+    if (k >= w.lists.fixed.size()) return "a kinematic body's place is outside the static list";
+  }
+  if (!w.sensor_tracker.slots_below(slots))
+    return "a sensor's overlap names a slot that does not exist";
   if (!w.lists_dirty_) {
     // Lists that are current hold each living body once, where its motion puts it.
     std::vector<std::uint8_t> listed(slots, 0);

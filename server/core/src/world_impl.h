@@ -4,12 +4,14 @@
 // are added, removed, fall asleep or wake.
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "contact_tracker.h"
 #include "physics/broadphase.h"
 #include "physics/world.h"
+#include "sensor_tracker.h"
 #include "step_records.h"
 #include "step_scratch.h"
 
@@ -79,6 +81,15 @@ struct alignas(64) Body {
   bool is_dynamic() const { return motion == Motion::Dynamic; }
 };
 
+// What decides which pairs collide, per slot: read when pairs are found (only in a
+// world where some body is filtered or a sensor), never by the passes over contacts,
+// so it lives apart from Body.
+struct BodyFilter {
+  Filter filter{};
+  bool sensor = false;
+  bool is_default() const { return !sensor && filter == Filter{}; }
+};
+
 // The dense lists of bodies the step walks, rebuilt (body_lists.cpp) when bodies
 // are added, removed, fall asleep or wake. World state: they live across steps.
 struct BodyLists {
@@ -92,6 +103,9 @@ struct BodyLists {
   UniformGrid fixed_grid;
   std::size_t fixed_circles = 0;   // circles among the static and sleeping bodies
   std::size_t fixed_sleeping = 0;  // sleeping bodies among them
+  // Positions in `fixed` of the kinematic bodies (filled only when there are any):
+  // each sub-step moves them and their boxes (step_kinematic.cpp).
+  std::vector<std::uint32_t> kinematic;
 };
 
 // The candidate pairs of the awake bodies, grouped by the lower body's position
@@ -120,6 +134,27 @@ class WorldImpl {
   std::size_t state_bytes() const;
   std::size_t alive_count() const { return alive_count_; }
   std::size_t dynamic_count() const { return dynamic_count_; }
+  std::size_t kinematic_count() const { return kinematic_count_; }
+  // Whether any body is filtered or a sensor: only then are pairs tested against
+  // the filters when they are found.
+  bool filtering() const { return filtered_count_ != 0; }
+  // Whether two bodies may collide: neither a sensor, and their filters agree.
+  bool pair_collides(std::uint32_t a, std::uint32_t b) const {
+    const BodyFilter& fa = filters[a];
+    const BodyFilter& fb = filters[b];
+    return !fa.sensor && !fb.sensor && should_collide(fa.filter, fb.filter);
+  }
+  // pair_collides, or true in a world without filters and sensors.
+  bool pair_collides_or_unfiltered(std::uint32_t a, std::uint32_t b) const {
+    return !filtering() || pair_collides(a, b);
+  }
+  // Wakes the sleeping bodies whose boxes meet `around`, but `except`.
+  void wake_in(const Aabb& around, std::uint32_t except);
+  // A body's filter changed: the pairs are found anew.
+  void set_filter(std::uint32_t slot, const Filter& filter);
+  // The lowest slot of an alive body with this name, or kNoSlot.
+  static constexpr std::uint32_t kNoSlot = UINT32_MAX;
+  std::uint32_t find_name(std::string_view name) const;
 
   // The body lists as the step needs them: rebuilt first if bodies fell asleep,
   // woke, or were added, removed or moved by hand.
@@ -162,6 +197,14 @@ class WorldImpl {
   BodyLists lists;
   CandidatePairs candidates;
   StepScratch scratch;
+  // Cold, per slot: filters and sensors (read when pairs are found), names.
+  std::vector<BodyFilter> filters;
+  std::vector<std::string> names;
+  // (name, slot) of every alive named body, sorted: find_body's index.
+  std::vector<std::pair<std::string, std::uint32_t>> name_index;
+  // The sensors' slots, ascending; their overlaps and events.
+  std::vector<std::uint32_t> sensors;
+  SensorTracker sensor_tracker;
 
  private:
   friend class World;
@@ -179,6 +222,8 @@ class WorldImpl {
   std::vector<std::uint32_t> free_slots_;  // LIFO: deterministic reuse
   std::size_t alive_count_ = 0;
   std::size_t dynamic_count_ = 0;  // bodies never change their motion once made
+  std::size_t kinematic_count_ = 0;
+  std::size_t filtered_count_ = 0;  // alive bodies whose BodyFilter is not the default
 
   bool lists_dirty_ = true;
   // Whether the rebuild must walk every body (a body was added, removed or moved by

@@ -14,7 +14,9 @@ std::string id_text(std::uint64_t id) {
 phys::BodyDef body_def(const physics::wire::RelayBody& body) {
   phys::BodyDef def;
   def.shape = body.shape() == physics::wire::SHAPE_CIRCLE ? phys::Shape::Circle : phys::Shape::Box;
-  def.motion = body.is_static() ? phys::Motion::Static : phys::Motion::Dynamic;
+  def.motion = body.is_static()      ? phys::Motion::Static
+               : body.is_kinematic() ? phys::Motion::Kinematic
+                                     : phys::Motion::Dynamic;
   def.position = vec(body.position());
   def.velocity = vec(body.velocity());
   def.acceleration = vec(body.acceleration());
@@ -24,6 +26,11 @@ phys::BodyDef body_def(const physics::wire::RelayBody& body) {
   def.restitution = body.restitution();
   def.friction = vec(body.friction());
   def.contact_friction = body.contact_friction();
+  if (body.has_category_bits()) def.filter.category_bits = body.category_bits();
+  if (body.has_mask_bits()) def.filter.mask_bits = body.mask_bits();
+  def.filter.group = body.group();
+  def.is_sensor = body.is_sensor();
+  def.name = body.name();
   return def;
 }
 

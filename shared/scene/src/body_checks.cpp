@@ -1,9 +1,11 @@
 // A body's checks: name, shape and size, position, velocity and acceleration,
-// static or dynamic, mass, restitution and friction; and its placement in bounds.
+// static, kinematic or dynamic, mass, restitution and friction, filter and sensor;
+// and its placement in bounds.
 #include "body_checks.h"
 
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <string>
 #include <utility>
 
@@ -21,6 +23,30 @@ phys::Vec2 half_size(const phys::BodyDef& body) {
 std::string describe_bounds(const phys::Aabb& bounds) {
   return fmt::format("world.bounds [({}, {}), ({}, {})]", bounds.min.x, bounds.min.y, bounds.max.x,
                      bounds.max.y);
+}
+
+// The filter's bits are 32 wide in the core (phys::Filter); the format leaves room.
+bool check_bits(Checker& check, const FieldPath& path, std::uint64_t bits, std::uint32_t* out) {
+  if (bits > 0xFFFFFFFFu)
+    return check.fail(path, fmt::format("is {:#x}: categories are 32 bits wide, so at most "
+                                        "0xffffffff",
+                                        bits));
+  *out = static_cast<std::uint32_t>(bits);
+  return true;
+}
+
+bool check_filter(Checker& check, const proto::Body& body, const FieldPath& path,
+                  phys::Filter* out) {
+  phys::Filter filter;
+  if (body.has_category_bits() &&
+      !check_bits(check, path.child("category_bits"), body.category_bits(), &filter.category_bits))
+    return false;
+  if (body.has_mask_bits() &&
+      !check_bits(check, path.child("mask_bits"), body.mask_bits(), &filter.mask_bits))
+    return false;
+  filter.group = body.group();
+  *out = filter;
+  return true;
 }
 
 }  // namespace
@@ -66,7 +92,13 @@ bool check_body(Checker& check, const proto::Body& body, const FieldPath& path,
                         "has no shape: write circle { radius: R } or "
                         "box { half_extents { x: HX y: HY } }");
   }
-  def.motion = body.is_static() ? phys::Motion::Static : phys::Motion::Dynamic;
+  def.name = body.name();
+  if (body.is_static() && body.is_kinematic())
+    return check.fail(path.child("is_kinematic"),
+                      "a body is static or kinematic, not both (is_static is set too)");
+  def.motion = body.is_static()      ? phys::Motion::Static
+               : body.is_kinematic() ? phys::Motion::Kinematic
+                                     : phys::Motion::Dynamic;
   if (is_template && body.has_position())
     return check.fail(path.child("position"),
                       "must be unset: this template's positions come from its grid or "
@@ -93,6 +125,13 @@ bool check_body(Checker& check, const proto::Body& body, const FieldPath& path,
       return check.fail(path.child("velocity"), "must be unset: a static body never moves");
     if (def.acceleration != phys::Vec2{})
       return check.fail(path.child("acceleration"), "must be unset: a static body never moves");
+  } else if (body.is_kinematic()) {
+    if (body.has_mass())
+      return check.fail(path.child("mass"),
+                        "must be unset on a kinematic body (kinematic bodies have infinite mass)");
+    if (def.acceleration != phys::Vec2{})
+      return check.fail(path.child("acceleration"),
+                        "must be unset: a kinematic body moves by its velocity alone");
   } else if (body.has_mass()) {
     if (!check.positive(path.child("mass"), body.mass())) return false;
     def.mass = body.mass();
@@ -106,6 +145,8 @@ bool check_body(Checker& check, const proto::Body& body, const FieldPath& path,
   def.friction = to_vec(body.friction());
   if (!check.not_negative(path.child("contact_friction"), body.contact_friction())) return false;
   def.contact_friction = body.contact_friction();
+  if (!check_filter(check, body, path, &def.filter)) return false;
+  def.is_sensor = body.is_sensor();
   *out = def;
   return true;
 }

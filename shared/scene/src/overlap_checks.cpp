@@ -17,6 +17,12 @@ namespace scene::detail {
 namespace {
 
 // How deep two bodies interpenetrate; 0 when apart or touching.
+// Whether the core would ever push the two apart.
+bool may_collide(const phys::BodyDef& a, const phys::BodyDef& b) {
+  if (a.motion != phys::Motion::Dynamic && b.motion != phys::Motion::Dynamic) return false;
+  return !a.is_sensor && !b.is_sensor && phys::should_collide(a.filter, b.filter);
+}
+
 double depth(const phys::BodyDef& a, const phys::BodyDef& b) {
   const phys::Vec2 ha = phys::half_size(a.shape, a.radius, a.half_extents);
   const phys::Vec2 hb = phys::half_size(b.shape, b.radius, b.half_extents);
@@ -89,8 +95,7 @@ bool check_overlaps(Checker& check, const SceneDef& def, const std::vector<BodyS
     const double end = high(i) - kOverlapTolerance;
     for (std::size_t m = k + 1; m < order.size() && low(order[m]) < end; ++m) {
       const std::size_t j = order[m];
-      if (bodies[i].motion == phys::Motion::Static && bodies[j].motion == phys::Motion::Static)
-        continue;
+      if (!may_collide(bodies[i], bodies[j])) continue;
       const double d = depth(bodies[i], bodies[j]);
       if (!(d > kOverlapTolerance)) continue;
       const std::size_t earlier = std::min(i, j);
@@ -98,7 +103,7 @@ bool check_overlaps(Checker& check, const SceneDef& def, const std::vector<BodyS
       const BodySource& source = source_of(sources, later);
       return check.fail(source.grid ? source.path : source.path.child("position"),
                         fmt::format("{} overlaps {} by {:.6g} m: bodies must start apart "
-                                    "(touching is allowed), unless both are static",
+                                    "(touching is allowed), unless they never collide",
                                     describe(sources, later), describe(sources, earlier), d));
     }
   }

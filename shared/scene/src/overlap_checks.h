@@ -21,8 +21,10 @@ struct BodySource {
 
 // Two bodies overlap when they interpenetrate by more than kOverlapTolerance on
 // every axis the shapes meet in (touching is allowed: stacks and grids are laid out
-// edge to edge). Pairs of two static bodies are allowed (level geometry may be built
-// of overlapping pieces that never move). The first overlap in body order fails.
+// edge to edge). Pairs that never collide are allowed: two static bodies (level
+// geometry may be built of overlapping pieces that never move), static and
+// kinematic ones among themselves, a sensor with anything, and pairs their filters
+// keep apart. The first overlap in body order fails.
 inline constexpr double kOverlapTolerance = 1.0e-6;
 bool check_overlaps(Checker& check, const SceneDef& def, const std::vector<BodySource>& sources);
 

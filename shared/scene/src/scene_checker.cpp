@@ -37,6 +37,8 @@ bool check_spawns(Checker& check, const proto::Scene& message, SceneDef* def) {
       return false;
     if (message.player().is_static())
       return check.fail(player_path.child("is_static"), "the player's body must be dynamic");
+    if (message.player().is_kinematic())
+      return check.fail(player_path.child("is_kinematic"), "the player's body must be dynamic");
   }
   if (message.spawn_points_size() == 0)
     return check.fail(FieldPath().child("spawn_points"),

@@ -1,7 +1,9 @@
 #pragma once
 // What a body is made from (BodyDef, with documented defaults) and how it is named
 // (BodyId: an index plus a generation, so a stale id is detected, not misused).
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <string_view>
 
 #include "physics/vec2.h"
@@ -9,7 +11,31 @@
 namespace phys {
 
 enum class Shape : std::uint8_t { Circle, Box };
-enum class Motion : std::uint8_t { Static, Dynamic };
+// Static: never moves, infinite mass. Dynamic: moved by gravity, its acceleration
+// and its contacts. Kinematic: moved by its velocity alone (set by code), with
+// infinite mass: it pushes and carries dynamic bodies, and nothing pushes it back;
+// it meets neither static nor other kinematic bodies.
+enum class Motion : std::uint8_t { Static, Dynamic, Kinematic };
+
+// Which pairs of bodies may collide (Box2D's b2Filter). Two bodies of the same
+// non-zero group always collide (positive group) or never do (negative group);
+// otherwise they collide when each one's mask holds a category bit of the other.
+// The default puts a body in category 1 and lets it meet every category: every
+// pair collides, as without filtering.
+struct Filter {
+  std::uint32_t category_bits = 0x1;
+  std::uint32_t mask_bits = 0xFFFFFFFFu;
+  std::int32_t group = 0;
+  constexpr bool operator==(const Filter&) const = default;
+};
+
+constexpr bool should_collide(const Filter& a, const Filter& b) {
+  if (a.group == b.group && a.group != 0) return a.group > 0;
+  return (a.mask_bits & b.category_bits) != 0 && (b.mask_bits & a.category_bits) != 0;
+}
+
+// The longest body name, in bytes (the scene format's limit for names).
+inline constexpr std::size_t kMaxBodyNameBytes = 256;
 
 struct BodyDef {
   Shape shape = Shape::Box;
@@ -26,6 +52,13 @@ struct BodyDef {
   // Coulomb friction between touching bodies (beyond the classic recipe): the tangential
   // impulse of a contact is at most this times its normal impulse. 0 is frictionless.
   double contact_friction = 0.0;
+  // Which bodies it may collide with (and, for a sensor, which it detects).
+  Filter filter{};
+  // A sensor detects the bodies it overlaps (World::sensor_events) and collides with
+  // none: nothing pushes it and it pushes nothing. Any motion may be a sensor.
+  bool is_sensor = false;
+  // A label for code and people (World::find_body); need not be unique. Empty: none.
+  std::string name;
 };
 
 // The half size of the box a body occupies: a circle's is (radius, radius), a box's its
@@ -40,14 +73,17 @@ enum class BodyDefError : std::uint8_t {
   NonFinitePosition,
   NonFiniteVelocity,
   NonFiniteAcceleration,
-  BadRadius,       // not finite, or <= 0
-  BadHalfExtents,  // not finite, or <= 0
-  BadMass,         // dynamic body whose mass is not finite or <= 0
-  BadRestitution,  // not finite, < 0 or > 1
-  BadFriction,     // not finite, or < 0
-  OutOfBounds,     // outside the world's bounds, when it has bounds
-  TooLarge,        // larger than the world's size limit
-  TooManyBodies,   // the world is full
+  BadRadius,              // not finite, or <= 0
+  BadHalfExtents,         // not finite, or <= 0
+  BadMass,                // dynamic body whose mass is not finite or <= 0 (a kinematic
+                          // or static body's mass is ignored: it is infinite)
+  BadRestitution,         // not finite, < 0 or > 1
+  BadFriction,            // not finite, or < 0
+  OutOfBounds,            // outside the world's bounds, when it has bounds
+  TooLarge,               // larger than the world's size limit
+  TooManyBodies,          // the world is full
+  KinematicAcceleration,  // a kinematic body moves by its velocity alone: must be zero
+  BadName,                // longer than kMaxBodyNameBytes
 };
 
 std::string_view describe(BodyDefError error);
@@ -78,7 +114,7 @@ struct BodyState {
   Vec2 acceleration{};
   double radius = 0.0;
   Vec2 half_extents{};
-  double mass = 0.0;  // 0 for static bodies (infinite mass)
+  double mass = 0.0;  // 0 for static and kinematic bodies (infinite mass)
   double restitution = 0.0;
   Vec2 friction{};
   double contact_friction = 0.0;

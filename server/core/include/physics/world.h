@@ -7,10 +7,12 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "physics/body.h"
 #include "physics/contact_events.h"
+#include "physics/sensor_events.h"
 #include "physics/settings.h"
 #include "physics/stats.h"
 
@@ -82,12 +84,27 @@ class World {
   bool remove_body(BodyId id);
   bool contains(BodyId id) const;
 
-  // The input of a dynamic body: held until set again. Non-finite values are
+  // The input of a dynamic body (not a kinematic one): held until set again. Non-finite values are
   // refused (false); the magnitude is clamped to settings().max_acceleration.
   bool set_acceleration(BodyId id, Vec2 acceleration);
   // Teleports or kicks a body (tools, tests); wakes it. False for bad ids or values.
+  // A kinematic body is moved by its velocity: set it (or its position) each step to
+  // lead it along a path. Positions set by hand teleport: only a velocity pushes and
+  // carries what is in the way. False for a static body.
   bool set_position(BodyId id, Vec2 position);
   bool set_velocity(BodyId id, Vec2 velocity);
+
+  // The alive body with this name and the lowest id index (names need not be
+  // unique); nothing for an empty or unknown name. A binary search over the named
+  // bodies.
+  std::optional<BodyId> find_body(std::string_view name) const;
+  // Its name ("" for an unnamed body or a bad id). Valid until the body is removed.
+  std::string_view name(BodyId id) const;
+  // Its collision filter (nothing for a bad id). Setting one wakes the body and
+  // what touches it, and has the pairs found anew at the next step.
+  std::optional<Filter> filter(BodyId id) const;
+  bool set_filter(BodyId id, const Filter& filter);
+  bool is_sensor(BodyId id) const;
 
   std::optional<BodyState> body(BodyId id) const;
   // Every body, in ascending id order (the order the state hash uses).
@@ -100,8 +117,9 @@ class World {
   // One fixed step of dt seconds (dt finite and > 0; a programmer error otherwise).
   void step(double dt);
 
-  // 64-bit hash of every body's id, shape, position, velocity and acceleration, in
-  // id order, over the exact bit patterns. Equal states give equal hashes.
+  // 64-bit hash of every body's id, shape, motion, position, velocity, acceleration
+  // and size, and its filter and sensor flag where not the default, in id order,
+  // over the exact bit patterns. Equal states give equal hashes. Names are not in it.
   std::uint64_t state_hash() const;
   // Steps taken since creation.
   std::uint64_t step_count() const;
@@ -119,6 +137,13 @@ class World {
   const std::vector<ContactEvent>& contact_events() const;
   // Pairs in contact after the last step (while on).
   std::size_t contacts_in_touch() const;
+
+  // Sensor events (physics/sensor_events.h says what an overlap is): the last
+  // step's begins and ends, ordered by (sensor, visitor) ids. Always on: a world
+  // without sensors does no work for them.
+  const std::vector<SensorEvent>& sensor_events() const;
+  // (Sensor, visitor) pairs overlapping after the last step.
+  std::size_t sensor_overlaps() const;
 
   const WorldSettings& settings() const;
   const StageCounters& counters() const;
