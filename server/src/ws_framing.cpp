@@ -66,7 +66,10 @@ struct WsFraming::Impl {
         state != websocketpp::session::state::closed) {
       return;
     }
-    if (connection->get_remote_close_code() != close_status::blank) {
+    // The remote code stays abnormal_close (1006, never sent on the wire) until the
+    // peer's close frame comes.
+    const close_status::value remote = connection->get_remote_close_code();
+    if (remote != close_status::abnormal_close && remote != close_status::blank) {
       end(Status::PeerClosed, "closed by the peer");
     } else if (connection->get_local_close_code() == close_status::message_too_big) {
       end(Status::TooLarge, "a message over the limit of " + std::to_string(max_message_bytes) +
