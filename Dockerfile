@@ -9,7 +9,7 @@ RUN apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
       build-essential cmake ninja-build pkg-config \
       libasio-dev libprotobuf-dev protobuf-compiler \
-      libcli11-dev libspdlog-dev libfmt-dev libcpp-httplib-dev \
+      libcli11-dev libspdlog-dev libfmt-dev libcpp-httplib-dev libwebsocketpp-dev \
  && rm -rf /var/lib/apt/lists/*
 WORKDIR /src
 COPY . .

@@ -21,6 +21,8 @@ case "${1:-}" in
   libcli11-dev libspdlog-dev libfmt-dev
   # The server's /metrics endpoint and its Agones SDK calls (HTTP).
   libcpp-httplib-dev
+  # The WebSocket port (header-only).
+  libwebsocketpp-dev
   # Peer engines, measured beside ours in physics-bench.
   libbox2d-dev libchipmunk-dev
   # Plots in docs/ACCURACY.md.

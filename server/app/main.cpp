@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   std::string lockstep_pace = "asap";
   int port = config.port;
   int metrics_port = -1;
+  int ws_port = -1;
   long stats_interval_s = 60;
 
   const auto ip_address_check = [](const std::string& text) {
@@ -61,6 +62,11 @@ int main(int argc, char** argv) {
   app.add_option("--port", port,
                  "TCP port; 0 picks a free one (printed as 'listening on ADDRESS:PORT')")
       ->capture_default_str()
+      ->check(CLI::Range(0, 65535));
+  app.add_option("--ws-port", ws_port,
+                 "WebSocket port beside the TCP one, on the --bind address: the same messages, "
+                 "one per binary frame, the same limits (docs/PROTOCOL.md); 0 picks a free one "
+                 "(printed as 'websocket on ADDRESS:PORT'); default: off")
       ->check(CLI::Range(0, 65535));
   app.add_option("--tick-rate", tick_rate,
                  "Ticks per second; default: the scene's tick rate (60 in the built-in scene)")
@@ -233,6 +239,7 @@ int main(int argc, char** argv) {
   config.lockstep_pace = lockstep_pace == "realtime" ? server::ServerConfig::Pace::Realtime
                                                      : server::ServerConfig::Pace::Asap;
   if (metrics_port >= 0) config.metrics_port = static_cast<std::uint16_t>(metrics_port);
+  if (ws_port >= 0) config.ws_port = static_cast<std::uint16_t>(ws_port);
   config.stats_log_interval = std::chrono::seconds(stats_interval_s);
   // On Agones the sidecar's REST port comes in the environment (docs/DEPLOY.md).
   if (const char* agones_port = std::getenv("AGONES_SDK_HTTP_PORT"); agones_port != nullptr) {
@@ -284,6 +291,9 @@ int main(int argc, char** argv) {
     server::Server server(config, std::move(scene));
     // Tests and scripts read this line to learn the port (--port 0).
     std::cout << "listening on " << config.bind << ":" << server.port() << std::endl;
+    if (config.ws_port) {
+      std::cout << "websocket on " << config.bind << ":" << server.ws_port() << std::endl;
+    }
     if (config.metrics_port) {
       std::cout << "metrics on " << config.metrics_bind << ":" << server.metrics_port()
                 << std::endl;

@@ -126,6 +126,7 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
       lockstep_timer_(io_),
       housekeeping_timer_(io_),
       accept_retry_timer_(io_),
+      ws_accept_retry_timer_(io_),
       gate_(config_.lockstep_timeout),
       feeds_(wire::Predictor(simulation_.tick_rate(), simulation_.world().settings().gravity.x,
                              simulation_.world().settings().gravity.y),
@@ -167,6 +168,7 @@ Server::Impl::Impl(ServerConfig config, scene::SceneDef scene)
   acceptor_.listen(asio::socket_base::max_listen_connections, ec);
   if (ec) throw std::system_error(ec, "cannot listen on " + where);
   port_ = acceptor_.local_endpoint().port();
+  if (config_.ws_port) listen_ws(address, *config_.ws_port);
 
   if (!config_.record_path.empty()) {
     RecordOptions record_options;
@@ -222,6 +224,7 @@ void Server::Impl::run() {
   asio::post(io_, [this] {
     if (stopping_) return;
     do_accept();
+    if (ws_acceptor_) do_ws_accept();
     arm_housekeeping();
     if (!config_.lockstep) start_fixed_ticks();
     if (agones_) agones_->ready();
@@ -263,6 +266,7 @@ Server::Server(ServerConfig config, scene::SceneDef scene)
     : impl_(std::make_shared<Impl>(std::move(config), std::move(scene))) {}
 Server::~Server() = default;
 std::uint16_t Server::port() const { return impl_->port(); }
+std::uint16_t Server::ws_port() const { return impl_->ws_port(); }
 void Server::run() { impl_->run(); }
 void Server::stop() { impl_->stop(); }
 ServerStats Server::stats() const { return impl_->stats(); }

@@ -9,6 +9,7 @@
 #include "handshake.h"
 #include "log_fields.h"
 #include "server_impl.h"
+#include "wire/framing.h"
 #include "wire/messages.h"
 
 namespace server {
@@ -25,38 +26,44 @@ void Server::Impl::do_accept() {
       });
       return;
     }
-    update_stats([](ServerStats& s) { ++s.connections_accepted; });
-    std::error_code endpoint_error;
-    const auto remote = socket.remote_endpoint(endpoint_error);
-    if (!endpoint_error) {
-      const std::string address = remote.address().to_string();
-      const AddressLimits::Decision decision =
-          address_limits_.on_accept(address, std::chrono::steady_clock::now());
-      if (decision.verdict != AddressLimits::Verdict::Allowed) {
-        const auto retry =
-            std::chrono::ceil<std::chrono::milliseconds>(decision.retry_after).count();
-        refuse_at_accept(socket, decision.verdict == AddressLimits::Verdict::BackingOff
-                                     ? "too many failed Hellos from " + address + "; retry in " +
-                                           std::to_string(retry) + " ms"
-                                     : "too many connections from " + address + "; retry in " +
-                                           std::to_string(retry) + " ms");
-        do_accept();
-        return;
-      }
-    }
-    const std::uint32_t id = take_free_id(
-        next_client_id_, [this](std::uint32_t live) { return sessions_.count(live) > 0; });
-    auto session = std::make_shared<Session>(std::move(socket), id, *this, limits_);
-    sessions_.emplace(id, session);
-    publish_connection_counts();
-    if (log_admits("connection", session->address())) {
-      log_with(spdlog::level::info, {.client = id, .address = session->peer()},
-               "connection {} from {}", id, session->peer());
-    }
-    session->start();
-    refuse_if_too_many_pending(*session);
+    admit(std::move(socket), Transport::Tcp);
     do_accept();
   });
+}
+
+// A connection accepted on either port: the same limits, ids and sessions.
+void Server::Impl::admit(asio::ip::tcp::socket socket, Transport transport) {
+  update_stats([](ServerStats& s) { ++s.connections_accepted; });
+  std::error_code endpoint_error;
+  const auto remote = socket.remote_endpoint(endpoint_error);
+  if (!endpoint_error) {
+    const std::string address = remote.address().to_string();
+    const AddressLimits::Decision decision =
+        address_limits_.on_accept(address, std::chrono::steady_clock::now());
+    if (decision.verdict != AddressLimits::Verdict::Allowed) {
+      const auto retry = std::chrono::ceil<std::chrono::milliseconds>(decision.retry_after).count();
+      refuse_at_accept(socket,
+                       decision.verdict == AddressLimits::Verdict::BackingOff
+                           ? "too many failed Hellos from " + address + "; retry in " +
+                                 std::to_string(retry) + " ms"
+                           : "too many connections from " + address + "; retry in " +
+                                 std::to_string(retry) + " ms",
+                       transport);
+      return;
+    }
+  }
+  const std::uint32_t id = take_free_id(
+      next_client_id_, [this](std::uint32_t live) { return sessions_.count(live) > 0; });
+  auto session = std::make_shared<Session>(std::move(socket), id, *this, limits_,
+                                           make_framing(transport, limits_));
+  sessions_.emplace(id, session);
+  publish_connection_counts();
+  if (log_admits("connection", session->address())) {
+    log_with(spdlog::level::info, {.client = id, .address = session->peer()},
+             "connection {} from {}", id, session->peer());
+  }
+  session->start();
+  refuse_if_too_many_pending(*session);
 }
 
 // Connections that have not joined have caps of their own, in all and per address,
@@ -108,7 +115,8 @@ void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
   }
 }
 
-void Server::Impl::refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text) {
+void Server::Impl::refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text,
+                                    Transport transport) {
   update_stats([](ServerStats& s) { ++s.dropped[DropReason::AddressLimited]; });
   if (log_admits("refused at accept")) {
     log_with(spdlog::level::info, {.reason = to_string(DropReason::AddressLimited)},
@@ -117,7 +125,9 @@ void Server::Impl::refuse_at_accept(asio::ip::tcp::socket& socket, const std::st
   std::error_code ignored;
   socket.non_blocking(true, ignored);
   const std::string frame =
-      wire::encode_frame(wire::make_error(physics::wire::ERROR_RATE_LIMITED, text, true));
+      transport == Transport::WebSocket
+          ? ws_refusal_response(text)
+          : wire::encode_frame(wire::make_error(physics::wire::ERROR_RATE_LIMITED, text, true));
   socket.write_some(asio::buffer(frame), ignored);
   socket.shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
   socket.close(ignored);

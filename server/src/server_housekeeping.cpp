@@ -87,6 +87,7 @@ void Server::Impl::begin_shutdown() {
   spdlog::info("shutting down: closing {} connection(s)", sessions_.size());
   std::error_code ignored;
   acceptor_.close(ignored);
+  close_ws_acceptor();
   tick_timer_.cancel();
   lockstep_timer_.cancel();
   accept_retry_timer_.cancel();

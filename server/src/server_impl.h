@@ -31,6 +31,7 @@
 #include "stragglers.h"
 #include "truth_frame.h"
 #include "wire/view_settings.h"
+#include "ws_transport.h"
 
 namespace server {
 
@@ -40,6 +41,7 @@ class Server::Impl final : public SessionHost {
   ~Impl();
 
   std::uint16_t port() const { return port_; }
+  std::uint16_t ws_port() const { return ws_port_; }
   std::uint16_t metrics_port() const { return metrics_ ? metrics_->port() : 0; }
   void run();
   void stop();
@@ -55,10 +57,16 @@ class Server::Impl final : public SessionHost {
 
  private:
   void do_accept();
+  void admit(asio::ip::tcp::socket socket, Transport transport);
+  // The WebSocket port (ws_transport.cpp).
+  void listen_ws(const asio::ip::address& address, std::uint16_t port);
+  void do_ws_accept();
+  void close_ws_acceptor();
   void refuse_if_too_many_pending(Session& fresh);
-  // Refuses a connection at accept, without a session: one Error, written if the
-  // socket takes it at once, then closed.
-  void refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text);
+  // Refuses a connection at accept, without a session: one Error (on the WebSocket
+  // port, an HTTP 429), written if the socket takes it at once, then closed.
+  void refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text,
+                        Transport transport);
   // Per-cause log limit (see log_limiter.h): false means the line is counted (with its
   // address), not written. Every line a stranger can cause goes through it.
   bool log_admits(const char* cause, const std::string& address = {});
@@ -124,6 +132,9 @@ class Server::Impl final : public SessionHost {
   asio::steady_timer housekeeping_timer_;
   asio::steady_timer accept_retry_timer_;
   std::optional<asio::signal_set> signals_;
+  std::optional<asio::ip::tcp::acceptor> ws_acceptor_;  // config.ws_port set
+  std::uint16_t ws_port_ = 0;
+  asio::steady_timer ws_accept_retry_timer_;
 
   phys::SteadyClock clock_;
   std::optional<phys::FixedTimestep> timestep_;

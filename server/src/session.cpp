@@ -5,17 +5,19 @@
 #include <utility>
 
 #include "hello_widths.h"
+#include "tcp_framing.h"
 #include "wire/messages.h"
 
 namespace server {
 
 Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& host,
-                 SessionLimits limits)
+                 SessionLimits limits, std::unique_ptr<Framing> framing)
     : socket_(std::move(socket)),
       id_(id),
       host_(host),
       limits_(limits),
-      reader_(std::min(limits.max_hello_bytes, limits.max_message_bytes)),
+      framing_(framing ? std::move(framing)
+                       : std::make_unique<TcpFraming>(limits.max_message_bytes)),
       byte_bucket_(limits.bytes_per_second, limits.byte_burst, clock::now()),
       message_bucket_(limits.messages_per_second, limits.message_burst, clock::now()),
       full_state_bucket_(limits.full_state_bytes_per_second,
@@ -23,6 +25,8 @@ Session::Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& ho
       resume_timer_(socket_.get_executor()),
       accepted_(clock::now()),
       last_received_(accepted_) {
+  // The frame limit until the session has joined.
+  framing_->set_max_message_bytes(std::min(limits.max_hello_bytes, limits.max_message_bytes));
   std::error_code ec;
   // A snapshot must not wait for Nagle's algorithm to gather more bytes.
   socket_.set_option(asio::ip::tcp::no_delay(true), ec);
@@ -101,7 +105,7 @@ void Session::on_read(std::size_t bytes) {
   host_.on_bytes(0, bytes);
   byte_bucket_.spend(static_cast<double>(bytes), last_received_);
   if (!closing_) {
-    reader_.feed(std::span<const std::uint8_t>(read_buffer_.data(), bytes));
+    framing_->feed(read_buffer_.data(), bytes);
     handle_frames();
   }
   do_read();
@@ -128,22 +132,27 @@ void Session::handle_frames() {
       frames_held_ = true;
       return;
     }
-    switch (reader_.next(frame)) {
-      case wire::FrameStatus::NeedMore:
+    switch (framing_->next(frame)) {
+      case Framing::Status::NeedMore:
+        flush_output();
         return;
-      case wire::FrameStatus::TooLarge:
-        close_with_error(physics::wire::ERROR_MESSAGE_TOO_LARGE,
-                         "message of " + std::to_string(reader_.rejected_length()) +
-                             " bytes is over the limit of " +
-                             std::to_string(reader_.max_message_bytes()) + " bytes",
+      case Framing::Status::Control:
+        // A WebSocket ping or pong (answered by the framing): a message, for the rate.
+        flush_output();
+        message_bucket_.spend(1.0, now);
+        continue;
+      case Framing::Status::TooLarge:
+        close_with_error(physics::wire::ERROR_MESSAGE_TOO_LARGE, frame,
                          DropReason::MessageTooLarge);
         return;
-      case wire::FrameStatus::BadPrefix:
-        close_with_error(physics::wire::ERROR_MALFORMED,
-                         "length prefix is not a valid varint (over 10 bytes or 64 bits)",
-                         DropReason::Malformed);
+      case Framing::Status::Malformed:
+        close_with_error(physics::wire::ERROR_MALFORMED, frame, DropReason::Malformed);
         return;
-      case wire::FrameStatus::Frame:
+      case Framing::Status::PeerClosed:
+        close_after_reply(DropReason::Disconnected);
+        return;
+      case Framing::Status::Message:
+        flush_output();
         break;
     }
     physics::wire::ClientMessage message;
@@ -184,7 +193,20 @@ void Session::send(const physics::wire::ServerMessage& message) {
     return;
   }
   Outgoing item;
-  item.bytes = wire::encode_frame(message);
+  item.bytes = encode(message);
+  enqueue(std::move(item));
+}
+
+std::string Session::encode(const physics::wire::ServerMessage& message) const {
+  const std::string payload = message.SerializeAsString();
+  return framing_->header(payload.size()) + payload;
+}
+
+void Session::flush_output() {
+  std::string output = framing_->take_output();
+  if (output.empty()) return;
+  Outgoing item;
+  item.bytes = std::move(output);
   enqueue(std::move(item));
 }
 
@@ -219,7 +241,9 @@ void Session::do_write() {
   std::size_t count = 1;
   if (item.snapshot) {
     --waiting_snapshots_;
-    item.bytes = snapshot_frame_header(item.snapshot->size() + item.tail.size());
+    const std::size_t snapshot_bytes = item.snapshot->size() + item.tail.size();
+    const std::string message_header = snapshot_message_header(snapshot_bytes);
+    item.bytes = framing_->header(message_header.size() + snapshot_bytes) + message_header;
     item.buffers[1] = asio::buffer(*item.snapshot);
     item.buffers[2] = asio::buffer(item.tail);
     count = 3;
@@ -254,11 +278,28 @@ void Session::close_with_error(physics::wire::ErrorCode code, const std::string&
     }
   }
   Outgoing item;
-  item.bytes = wire::encode_frame(wire::make_error(code, text, true));
+  // Before a WebSocket's upgrade, there is no frame to put an Error in.
+  if (framing_->open()) item.bytes = encode(wire::make_error(code, text, true));
+  framing_->close();
+  item.bytes += framing_->take_output();
   closing_ = true;
   close_reason_ = reason;
   close_deadline_ = clock::now() + limits_.close_linger;
-  enqueue(std::move(item));
+  if (item.bytes.empty()) {
+    do_write();  // nothing to write: on to draining
+  } else {
+    enqueue(std::move(item));
+  }
+  announce_closing(reason);
+}
+
+void Session::close_after_reply(DropReason reason) {
+  if (closing_ || closed_) return;
+  closing_ = true;
+  close_reason_ = reason;
+  close_deadline_ = clock::now() + limits_.close_linger;
+  flush_output();
+  do_write();
   announce_closing(reason);
 }
 

@@ -1,6 +1,9 @@
 #pragma once
-// One TCP connection: a read chain (bytes -> FrameReader -> parsed ClientMessage ->
-// host) and one write queue that nothing else writes around. Snapshots are never
+// One connection: a read chain (bytes -> Framing -> parsed ClientMessage -> host) and
+// one write queue that nothing else writes around. The Framing is the port's: a
+// varint length prefix on the TCP port (tcp_framing.h), binary WebSocket frames on
+// the WebSocket port (ws_framing.h); everything else here, limits included, is the
+// same for both. Snapshots are never
 // dropped here: each builds on the one before (docs/PROTOCOL.md, section 5), and the
 // snapshot feeds send a client no more than its window of unacknowledged ones, so
 // the queue (and the kernel's buffers) hold at most that. Control messages
@@ -14,11 +17,11 @@
 #include <memory>
 #include <string>
 
+#include "framing.h"
 #include "server/server.h"
 #include "snapshot_encoder.h"
 #include "token_bucket.h"
 #include "wire.pb.h"
-#include "wire/framing.h"
 
 namespace server {
 
@@ -72,7 +75,9 @@ class Session : public std::enable_shared_from_this<Session> {
  public:
   using clock = std::chrono::steady_clock;
 
-  Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& host, SessionLimits limits);
+  // Without a framing, the TCP port's (tcp_framing.h).
+  Session(asio::ip::tcp::socket socket, std::uint32_t id, SessionHost& host, SessionLimits limits,
+          std::unique_ptr<Framing> framing = nullptr);
   ~Session();
 
   void start();
@@ -100,7 +105,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void set_joined(std::string name) {
     joined_ = true;
     name_ = std::move(name);
-    reader_.set_max_message_bytes(limits_.max_message_bytes);
+    framing_->set_max_message_bytes(limits_.max_message_bytes);
     read_proof_ = clock::now();
   }
   clock::time_point accepted_at() const { return accepted_; }
@@ -148,6 +153,12 @@ class Session : public std::enable_shared_from_this<Session> {
   std::size_t queued_control() const { return queue_.size() - waiting_snapshots_; }
   void begin_draining();
   void handle_frames();
+  // Queues what the framing wrote on its own (a WebSocket's upgrade reply, pongs).
+  void flush_output();
+  // The peer closed its side cleanly (a WebSocket close frame): write the framing's
+  // reply, then close as after an Error.
+  void close_after_reply(DropReason reason);
+  std::string encode(const physics::wire::ServerMessage& message) const;
   void enqueue(Outgoing item);
   void do_write();
   void finish(DropReason reason);
@@ -160,13 +171,13 @@ class Session : public std::enable_shared_from_this<Session> {
   std::string peer_;
   std::string address_;
   std::string name_;
-  wire::FrameReader reader_;
+  std::unique_ptr<Framing> framing_;
   TokenBucket byte_bucket_;
   TokenBucket message_bucket_;
   TokenBucket full_state_bucket_;
   asio::steady_timer resume_timer_;
   bool resume_armed_ = false;
-  // Whole frames may still be buffered in reader_: handle them before reading more.
+  // Whole frames may still be buffered in framing_: handle them before reading more.
   bool frames_held_ = false;
   std::array<std::uint8_t, 64 * 1024> read_buffer_{};
   // The item being written is taken out of the queue, so that dropping waiting

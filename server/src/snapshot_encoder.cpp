@@ -39,13 +39,15 @@ void fill_body_shape(const phys::BodyState& body, const phys::World& world,
 }
 
 std::string snapshot_frame_header(std::size_t snapshot_bytes) {
-  std::string length_of_snapshot;
-  wire::append_varint_prefix(snapshot_bytes, length_of_snapshot);
-  const std::size_t envelope_bytes = 1 + length_of_snapshot.size() + snapshot_bytes;
+  const std::string message_header = snapshot_message_header(snapshot_bytes);
   std::string header;
-  wire::append_varint_prefix(envelope_bytes, header);
-  header.push_back(kSnapshotFieldTag);
-  header += length_of_snapshot;
+  wire::append_varint_prefix(message_header.size() + snapshot_bytes, header);
+  return header + message_header;
+}
+
+std::string snapshot_message_header(std::size_t snapshot_bytes) {
+  std::string header(1, kSnapshotFieldTag);
+  wire::append_varint_prefix(snapshot_bytes, header);
   return header;
 }
 

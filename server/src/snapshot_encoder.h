@@ -16,6 +16,9 @@ namespace server {
 // ServerMessage.snapshot, varint(snapshot length). `snapshot_bytes` is the size of
 // everything that follows (the view's shared part, the client's own fields).
 std::string snapshot_frame_header(std::size_t snapshot_bytes);
+// The same without the frame's length: the tag and varint(snapshot length), the
+// ServerMessage's first bytes, for a transport that frames messages its own way.
+std::string snapshot_message_header(std::size_t snapshot_bytes);
 
 void fill_body_shape(const phys::BodyState& body, physics::wire::BodyShape& shape);
 // The same, with what the world knows beside the state: the body's name and sensor flag.

@@ -20,6 +20,7 @@ expect_usage_error("server --lockstep-pace slow" "--lockstep-pace" ${SERVER} --l
 expect_usage_error("server --log-format xml" "--log-format" ${SERVER} --log-format xml)
 expect_usage_error("server --lockstep-players 0" "--lockstep-players" ${SERVER} --lockstep-players 0)
 expect_usage_error("server --metrics-port 70000" "0 to 65535" ${SERVER} --metrics-port 70000)
+expect_usage_error("server --ws-port 70000" "0 to 65535" ${SERVER} --ws-port 70000)
 expect_usage_error("server --metrics-bind nowhere" "not an IP address" ${SERVER}
                    --metrics-bind nowhere)
 expect_usage_error("server --max-players-per-address -1" "--max-players-per-address" ${SERVER}
@@ -39,7 +40,7 @@ if(NOT rc EQUAL 0)
   message(FATAL_ERROR "server --help: exit ${rc}")
 endif()
 foreach(text "ERROR_NO_SPAWN" "fits 58" "--lockstep-players" "--lockstep-max-timeouts"
-        "--metrics-port" "--metrics-bind" "--log-format" "--max-players-per-address"
+        "--metrics-port" "--metrics-bind" "--log-format" "--max-players-per-address" "--ws-port"
         "acknowledges none of the snapshots")
   string(FIND "${help}" "${text}" at)
   if(at EQUAL -1)

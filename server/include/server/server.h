@@ -56,6 +56,10 @@ struct ServerConfig {
   std::string bind = "127.0.0.1";
   // 0 picks a free port; port() tells which.
   std::uint16_t port = 7777;
+  // The same protocol over WebSocket (one message per binary frame; docs/PROTOCOL.md),
+  // on `bind` too, with the same limits and sessions: 0 picks a free port (ws_port()
+  // tells which); unset: no WebSocket port.
+  std::optional<std::uint16_t> ws_port;
   // Ticks per second; 0 takes the scene's tick rate.
   double tick_rate = 0.0;
   // At most this many ticks stepped per timer wake-up; 0 takes the scene's.
@@ -314,6 +318,8 @@ class Server {
 
   // The port actually listened on (the chosen one when config.port was 0).
   std::uint16_t port() const;
+  // The WebSocket port listened on (0 without config.ws_port).
+  std::uint16_t ws_port() const;
   // Serves until stop(); all sockets and the tick timer run on the calling thread.
   void run();
   // Thread-safe and idempotent. Sends ERROR_SHUTTING_DOWN to every client, closes
