@@ -130,6 +130,25 @@ TEST(Rollback, TheBarrierStopsThePredictionAtMaxRollbackTicksPastTheConfirmed) {
   EXPECT_EQ(loop.core.confirmed_hash(), loop.server.hashes().at(loop.core.confirmed_tick()));
 }
 
+TEST(Rollback, TicksPastThePredictionInOneSnapshotAreTakenWithoutARollback) {
+  client::PredictionConfig config;
+  config.max_rollback = 5;
+  PredictionLoop loop(6, 30, 1, config);
+  for (int i = 0; i < 40; ++i) loop.round(circling);
+  ASSERT_EQ(loop.core.predicted_tick(), loop.core.confirmed_tick() + 5);
+  // 30 ticks in one snapshot: 5 were predicted right, 25 never predicted.
+  const std::vector<physics::wire::RelayTick> all(loop.in_flight.begin(), loop.in_flight.end());
+  loop.in_flight.clear();
+  const client::PredictionStats before = loop.core.stats();
+  loop.core.on_snapshot(relay_snapshot(all));
+  const client::PredictionStats& stats = loop.core.stats();
+  EXPECT_EQ(stats.rollbacks, 0u);
+  EXPECT_EQ(stats.matched_ticks - before.matched_ticks, 5u);
+  EXPECT_EQ(stats.confirmed_ticks - before.confirmed_ticks, 30u);
+  EXPECT_EQ(stats.desyncs, 0u);
+  EXPECT_EQ(loop.core.confirmed_tick(), loop.server.tick());
+}
+
 TEST(Smoothing, ACorrectionDecaysExponentiallyOverTicks) {
   client::PredictionConfig config;
   config.smoothing_time_constant = 0.1;

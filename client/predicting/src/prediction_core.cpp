@@ -120,6 +120,8 @@ void PredictionCore::on_snapshot(const Snapshot& snapshot) {
                      std::to_string(confirmed_tick_) + ": the ticks between are missing");
       continue;
     }
+    // Every predicted tick confirmed: the next ones were never predicted.
+    if (world_tick_ == confirmed_tick_) on_confirmed = true;
     if (!on_confirmed) {
       if (matches(relay)) {
         confirm_predicted(relay);
