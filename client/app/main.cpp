@@ -16,6 +16,7 @@
 #include "client/input_pacer.h"
 #include "client/load.h"
 #include "pattern.h"
+#include "predicting.h"
 #include "print.h"
 
 namespace {
@@ -33,6 +34,8 @@ struct Options {
   std::uint64_t ticks = 0;  // 0: until the server ends the session
   bool json = false;
   int bots = 0;
+  bool predict = false;
+  client::PredictionConfig prediction;
   double duration_seconds = 5.0;
   int connect_timeout_ms = 5000;
 };
@@ -100,6 +103,8 @@ int run_bots(const Options& options) {
   load.duration = std::chrono::milliseconds(static_cast<long>(options.duration_seconds * 1000.0));
   load.connect_timeout = std::chrono::milliseconds(options.connect_timeout_ms);
   load.pacer = options.pacer;
+  load.predict = options.predict;
+  load.prediction = options.prediction;
   const client::LoadReport report = client::run_load(load);
   fmt::print("{}\n", client_app::format_load_report(report, options.json));
   if (report.bots_connected == 0) {
@@ -138,6 +143,14 @@ int main(int argc, char** argv) {
                  "Load mode: run this many clients, each sending an input every tick, and "
                  "report latency and bandwidth")
       ->check(CLI::Range(1, 4096));
+  app.add_flag("--predict", options.predict,
+               "Run the world here and predict (the input relay; client/predicting_client.h): "
+               "the own input shows at once, corrections roll back and are smoothed");
+  app.add_option("--max-rollback", options.prediction.max_rollback,
+                 "With --predict: ticks the prediction may run past the server's confirmed "
+                 "tick, the deepest rollback")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 600));
   app.add_option("--duration", options.duration_seconds, "Load mode: seconds to measure")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
@@ -219,6 +232,18 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "physics-client: --accel must be finite numbers\n");
       return kExitUsage;
     }
+  }
+  if (options.predict && options.bots == 0) {
+    client_app::PredictingRun run;
+    run.config.client = options.client;
+    run.config.pacer = options.pacer;
+    run.config.prediction = options.prediction;
+    if (options.accel.size() == 2)
+      run.pattern.constant = client::Vec2{options.accel[0], options.accel[1]};
+    run.ticks = options.ticks;
+    run.json = options.json;
+    run.connect_timeout = std::chrono::milliseconds(options.connect_timeout_ms);
+    return client_app::run_predicting(run);
   }
   return options.bots > 0 ? run_bots(options) : run_single(options);
 }

@@ -69,14 +69,23 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         "\"input_delay_ticks_min\":{},\"input_delay_ticks_max\":{},"
         "\"snapshot_age_ms_median\":{:.3f},\"snapshot_age_ms_p99\":{:.3f},"
         "\"late_inputs\":{},\"inputs_sent\":{},"
-        "\"inputs_unanswered\":{},\"snapshots_dropped\":{},\"failures\":{}}}",
+        "\"inputs_unanswered\":{},\"snapshots_dropped\":{},\"failures\":{},"
+        "\"predict\":{},\"own_input_visible_ms_median\":{:.3f},"
+        "\"own_input_visible_ms_p99\":{:.3f},\"rollbacks_per_second\":{:.2f},"
+        "\"resimulated_ticks_per_second\":{:.2f},\"largest_correction_m\":{:.6f},"
+        "\"largest_smoothed_correction_m\":{:.6f},\"desyncs\":{},\"resyncs\":{},"
+        "\"bytes_per_second\":{:.0f}}}",
         report.bots_requested, report.bots_connected, report.seconds, report.latency_samples,
         report.latency_median_ms, report.latency_p99_ms, report.latency_max_ms,
         report.bytes_per_second_mean, report.bytes_per_second_min, report.bytes_per_second_max,
         report.snapshots_per_second_mean, report.ticks_per_second, report.input_delay_median,
         report.input_delay_min, report.input_delay_max, report.snapshot_age_median_ms,
         report.snapshot_age_p99_ms, report.late_margins, report.inputs_sent,
-        report.inputs_unanswered, report.snapshots_dropped, report.failures.size());
+        report.inputs_unanswered, report.snapshots_dropped, report.failures.size(),
+        report.predicting, report.own_input_visible_ms_median, report.own_input_visible_ms_p99,
+        report.rollbacks_per_second, report.resimulated_ticks_per_second,
+        report.largest_correction_m, report.largest_smoothed_correction_m, report.desyncs,
+        report.resyncs, report.bytes_per_second_mean);
   }
   std::string text = fmt::format(
       "bots {} (connected {}) over {:.2f} s\n"
@@ -92,6 +101,16 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
       report.input_delay_min, report.input_delay_max, report.snapshot_age_median_ms,
       report.snapshot_age_p99_ms, report.late_margins, report.inputs_sent, report.inputs_unanswered,
       report.snapshots_dropped);
+  text += fmt::format("\ninput -> shown: median {:.3f} ms, p99 {:.3f} ms",
+                      report.own_input_visible_ms_median, report.own_input_visible_ms_p99);
+  if (report.predicting) {
+    text += fmt::format(
+        "\nprediction: {:.2f} rollbacks/s, {:.2f} ticks stepped again/s, largest correction "
+        "{:.6f} m ({:.6f} m a tick after smoothing), desyncs {}, full states {}",
+        report.rollbacks_per_second, report.resimulated_ticks_per_second,
+        report.largest_correction_m, report.largest_smoothed_correction_m, report.desyncs,
+        report.resyncs);
+  }
   for (const auto& failure : report.failures) text += "\n" + failure;
   return text;
 }

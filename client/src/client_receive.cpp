@@ -158,7 +158,8 @@ void Client::on_snapshot(const physics::wire::Snapshot& message, std::size_t wir
   for (const wire::PredictedBody& b : bodies) {
     snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
   }
-  if (message.full()) {
+  // A full state: the bodies' (full), or the world's itself (the input relay).
+  if (message.full() || !message.world_state().empty()) {
     full_state_asked_ = false;
     ++stats_.full_states_received;
   }

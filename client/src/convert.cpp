@@ -39,6 +39,8 @@ static_assert(kProtocolVersion == pb::PROTOCOL_VERSION_CURRENT);
 static_assert(static_cast<int>(Encoding::Full) == pb::ENCODING_FULL);
 static_assert(static_cast<int>(Encoding::Inputs) == pb::ENCODING_INPUTS);
 
+std::vector<std::uint8_t> bytes(const std::string& text) { return {text.begin(), text.end()}; }
+
 }  // namespace
 
 BodyShape from_wire(const pb::BodyShape& message) {
@@ -74,6 +76,7 @@ Welcome from_wire(const pb::Welcome& message) {
   welcome.spectator = message.spectator();
   welcome.seat = message.seat();
   welcome.seats = message.seats();
+  welcome.world_state = bytes(message.world_state());
   return welcome;
 }
 
@@ -93,6 +96,9 @@ Snapshot header_from_wire(const pb::Snapshot& message) {
   }
   snapshot.contact_events_dropped = message.contact_events_dropped();
   if (message.has_input_margin_us()) snapshot.input_margin_us = message.input_margin_us();
+  snapshot.relay.reserve(static_cast<std::size_t>(message.relay_size()));
+  for (const auto& tick : message.relay()) snapshot.relay.push_back(tick.SerializeAsString());
+  snapshot.world_state = bytes(message.world_state());
   return snapshot;
 }
 
@@ -112,6 +118,7 @@ View from_wire(const pb::ViewRequest& message) {
   }
   view.byte_budget = message.byte_budget();
   view.state_hash = message.state_hash();
+  view.view_hash_interval = message.view_hash_interval();
   return view;
 }
 
@@ -134,6 +141,7 @@ pb::ViewRequest to_wire(const ViewRequest& request) {
   }
   if (request.byte_budget) view.set_byte_budget(*request.byte_budget);
   view.set_state_hash(request.state_hash);
+  if (request.view_hash_interval) view.set_view_hash_interval(*request.view_hash_interval);
   return view;
 }
 

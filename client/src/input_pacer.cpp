@@ -76,7 +76,9 @@ std::optional<Snapshot> InputPacer::poll(Clock::time_point deadline, const Input
     if (!on_clock || lead_known) {
       // After a snapshot: at first the tick after the one joined at.
       const std::uint64_t due = on_clock ? clock_.send_up_to(now) : last_sent_;
+      const std::uint64_t sent_before = last_sent_;
       if (!send_through(due, input)) return std::nullopt;
+      if (config_.return_after_send && last_sent_ != sent_before) return std::nullopt;
     }
     auto wake = std::min(deadline, next_ping_);
     if (on_clock) wake = std::min(wake, clock_.next_send_time(now));

@@ -33,6 +33,9 @@ struct PacerConfig {
   InputClockConfig clock;
   // Pings for the round trip, this often.
   std::chrono::milliseconds ping_interval{250};
+  // poll() also returns (nullopt) as soon as it has sent an input, so that a caller
+  // that predicts can show it at once (client/predicting_client.h).
+  bool return_after_send = false;
 };
 
 struct PacerStats {

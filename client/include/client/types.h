@@ -79,6 +79,9 @@ struct ViewRequest {
   std::optional<Rect> interest_rect;
   std::optional<std::uint32_t> byte_budget;  // bytes of body records per snapshot
   bool state_hash = false;                   // the world's hash in every snapshot
+  // The view hash (and, with Encoding::Inputs, the relay's state hash) every k-th
+  // snapshot or tick; empty: the server's default (4).
+  std::optional<std::uint32_t> view_hash_interval;
 };
 
 // The view in force, as Welcome.view gives it (every field filled in).
@@ -94,6 +97,7 @@ struct View {
   std::optional<Rect> interest_rect;
   std::uint32_t byte_budget = 0;
   bool state_hash = false;
+  std::uint32_t view_hash_interval = 0;
 };
 
 struct Welcome {
@@ -113,6 +117,9 @@ struct Welcome {
   bool spectator = false;   // watching: body_id is 0, inputs are refused
   std::uint32_t seat = 0;   // the seat held (docs/PROTOCOL.md, "Seats")
   std::uint32_t seats = 0;  // seats in all
+  // With ClientConfig::want_world: the world after current_tick, in the physics
+  // core's own format (phys::World::from_bytes). Empty otherwise.
+  std::vector<std::uint8_t> world_state;
 };
 
 // Which contact events to receive (Hello.contacts, docs/PROTOCOL.md "Contact
@@ -167,6 +174,13 @@ struct Snapshot {
   // on the wire (length prefix included).
   std::chrono::steady_clock::time_point received_at;
   std::size_t wire_bytes = 0;
+  // Encoding::Inputs: the ticks stepped since the previous snapshot, oldest first, up
+  // to and including `tick`, each a RelayTick (proto/wire.proto) as its wire bytes,
+  // for a client that runs the world (physics_relay reads them; this library never
+  // steps the world); and, answering a full state request, the world after `tick`
+  // (phys::World::from_bytes), empty otherwise.
+  std::vector<std::string> relay;
+  std::vector<std::uint8_t> world_state;
 
   const BodyState* find(std::uint64_t body_id) const;
 };

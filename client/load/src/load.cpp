@@ -7,38 +7,18 @@
 #include <mutex>
 #include <thread>
 
+#include "bot.h"
+
 namespace client {
-namespace {
 
-using Clock = std::chrono::steady_clock;
+Vec2 bot_acceleration(const LoadConfig& config, int index, std::uint64_t tick) {
+  if (config.still) return {0.0, 0.0};
+  const double phase = 2.0 * M_PI * index / std::max(1, config.bots);
+  const double angle = phase + 2.0 * M_PI * static_cast<double>(tick % 120) / 120.0;
+  return {config.acceleration * std::cos(angle), config.acceleration * std::sin(angle)};
+}
 
-struct BotResult {
-  bool connected = false;
-  std::string failure;
-  std::vector<double> latencies_ms;
-  std::uint64_t bytes = 0;
-  std::uint64_t snapshots = 0;
-  std::uint64_t records = 0;
-  std::uint64_t inputs = 0;
-  std::uint64_t unanswered = 0;
-  std::uint64_t dropped = 0;
-  double seconds = 0.0;
-  double ticks_per_second = 0.0;
-  std::vector<double> delays;
-  std::uint32_t final_delay = 0;
-  std::vector<double> ages_ms;
-  std::uint64_t margins = 0;
-  std::uint64_t late_margins = 0;
-};
-
-struct PendingInput {
-  std::uint64_t tick;
-  Clock::time_point sent_at;
-};
-
-// One bot: connects, waits for the others, then sends an input every tick until
-// the measurement ends.
-void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResult& result) {
+void run_thin_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResult& result) {
   ClientConfig client_config = config.client;
   client_config.name.append("-").append(std::to_string(index));
   Client bot(client_config);
@@ -49,8 +29,6 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
 
   InputPacer pacer(bot, config.pacer);
   std::deque<PendingInput> pending;
-  // Bots circle at different phases so that they do not all push the same way.
-  const double phase = 2.0 * M_PI * index / std::max(1, config.bots);
   bool measuring = false;
   const InputPacer::InputFor input = [&](std::uint64_t tick) -> Vec2 {
     if (config.still) return {0.0, 0.0};
@@ -58,8 +36,7 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
       pending.push_back({tick, Clock::now()});
       ++result.inputs;
     }
-    const double angle = phase + 2.0 * M_PI * static_cast<double>(tick % 120) / 120.0;
-    return {config.acceleration * std::cos(angle), config.acceleration * std::sin(angle)};
+    return bot_acceleration(config, index, tick);
   };
   // A still bot only watches (at a fixed rate it sends nothing; in lockstep, where
   // every tick waits for it, it sends zeros).
@@ -114,6 +91,7 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
       const std::chrono::duration<double, std::milli> latency =
           snapshot->received_at - pending.front().sent_at;
       result.latencies_ms.push_back(latency.count());
+      result.visible_ms.push_back(latency.count());
       pending.pop_front();
     }
     previous = std::move(snapshot);
@@ -134,8 +112,6 @@ void run_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResu
   bot.disconnect("load run finished");
 }
 
-}  // namespace
-
 double quantile(std::vector<double> samples, double p) {
   if (samples.empty()) return 0.0;
   std::sort(samples.begin(), samples.end());
@@ -152,8 +128,8 @@ LoadReport run_load(const LoadConfig& config) {
     std::vector<std::jthread> threads;
     threads.reserve(results.size());
     for (int i = 0; i < bots; ++i) {
-      threads.emplace_back(run_bot, std::cref(config), i, std::ref(start),
-                           std::ref(results[static_cast<std::size_t>(i)]));
+      threads.emplace_back(config.predict ? run_predicting_bot : run_thin_bot, std::cref(config), i,
+                           std::ref(start), std::ref(results[static_cast<std::size_t>(i)]));
     }
   }
 
@@ -163,6 +139,9 @@ LoadReport run_load(const LoadConfig& config) {
   std::vector<double> rates;
   std::vector<double> delays;
   std::vector<double> ages;
+  std::vector<double> visible;
+  double rollback_rate_sum = 0.0;
+  double resimulated_rate_sum = 0.0;
   double snapshot_rate_sum = 0.0;
   double tick_rate_sum = 0.0;
   bool any_delay = false;
@@ -174,7 +153,15 @@ LoadReport run_load(const LoadConfig& config) {
     if (!result.connected) continue;
     ++report.bots_connected;
     latencies.insert(latencies.end(), result.latencies_ms.begin(), result.latencies_ms.end());
+    visible.insert(visible.end(), result.visible_ms.begin(), result.visible_ms.end());
+    report.largest_correction_m = std::max(report.largest_correction_m, result.largest_correction);
+    report.largest_smoothed_correction_m =
+        std::max(report.largest_smoothed_correction_m, result.largest_smoothed_correction);
+    report.desyncs += result.desyncs;
+    report.resyncs += result.resyncs;
     if (result.seconds > 0.0) {
+      rollback_rate_sum += static_cast<double>(result.rollbacks) / result.seconds;
+      resimulated_rate_sum += static_cast<double>(result.resimulated) / result.seconds;
       rates.push_back(static_cast<double>(result.bytes) / result.seconds);
       snapshot_rate_sum += static_cast<double>(result.snapshots) / result.seconds;
     }
@@ -200,6 +187,9 @@ LoadReport run_load(const LoadConfig& config) {
   report.latency_p99_ms = quantile(latencies, 0.99);
   report.latency_max_ms = quantile(latencies, 1.0);
   report.input_delay_median = quantile(delays, 0.5);
+  report.predicting = config.predict;
+  report.own_input_visible_ms_median = quantile(visible, 0.5);
+  report.own_input_visible_ms_p99 = quantile(visible, 0.99);
   report.snapshot_age_median_ms = quantile(ages, 0.5);
   report.snapshot_age_p99_ms = quantile(ages, 0.99);
   if (report.bots_connected > 0) {
@@ -212,6 +202,8 @@ LoadReport run_load(const LoadConfig& config) {
     report.bytes_per_second_min = *std::min_element(rates.begin(), rates.end());
     report.bytes_per_second_max = *std::max_element(rates.begin(), rates.end());
     report.snapshots_per_second_mean = snapshot_rate_sum / static_cast<double>(rates.size());
+    report.rollbacks_per_second = rollback_rate_sum / static_cast<double>(rates.size());
+    report.resimulated_ticks_per_second = resimulated_rate_sum / static_cast<double>(rates.size());
   }
   return report;
 }

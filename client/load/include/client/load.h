@@ -11,6 +11,7 @@
 
 #include "client/client.h"
 #include "client/input_pacer.h"
+#include "client/prediction_core.h"
 
 namespace client {
 
@@ -30,6 +31,10 @@ struct LoadConfig {
   // Snapshots taken for this long after connecting, before the measurement starts
   // (a still bot's own body settles in it).
   std::chrono::milliseconds settle{0};
+  // Each bot a PredictingClient (client/predicting_client.h): the input relay, the
+  // world run and predicted, its own inputs shown at once.
+  bool predict = false;
+  PredictionConfig prediction;
 };
 
 struct LoadReport {
@@ -71,6 +76,21 @@ struct LoadReport {
   // Inputs whose margin the server reported negative (they were late).
   std::uint64_t late_margins = 0;
   std::uint64_t margins = 0;
+  // From an input leaving to the first state shown that reflects it, over all bots:
+  // the thin client's is the latency above (the first snapshot that covers its
+  // tick); the predicting client's, the first prediction stepped through its tick.
+  bool predicting = false;
+  double own_input_visible_ms_median = 0.0;
+  double own_input_visible_ms_p99 = 0.0;
+  // The predicting client's rollbacks and ticks stepped again, per second per bot
+  // (means), the largest correction of a body's predicted position over all bots
+  // before and after smoothing (m), and the hash mismatches and full states.
+  double rollbacks_per_second = 0.0;
+  double resimulated_ticks_per_second = 0.0;
+  double largest_correction_m = 0.0;
+  double largest_smoothed_correction_m = 0.0;
+  std::uint64_t desyncs = 0;
+  std::uint64_t resyncs = 0;
 };
 
 LoadReport run_load(const LoadConfig& config);

@@ -1,0 +1,102 @@
+// A bot that predicts: a PredictingClient sending the same circling inputs as the
+// thin bot, measuring how soon each input is shown, and what the rollbacks cost.
+#include <deque>
+#include <optional>
+
+#include "bot.h"
+#include "client/predicting_client.h"
+
+namespace client {
+
+void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& start,
+                        BotResult& result) {
+  PredictingClientConfig predicting;
+  predicting.client = config.client;
+  predicting.client.name.append("-").append(std::to_string(index));
+  predicting.pacer = config.pacer;
+  predicting.prediction = config.prediction;
+  PredictingClient bot(predicting);
+  result.connected = bot.connect(config.connect_timeout);
+  if (!result.connected) result.failure = bot.error();
+  start.arrive_and_wait();
+  if (!result.connected) return;
+
+  std::deque<PendingInput> shown;      // waiting to be stepped by the prediction
+  std::deque<PendingInput> confirmed;  // waiting for a snapshot that covers them
+  bool measuring = false;
+  const InputPacer::InputFor input = [&](std::uint64_t tick) -> Vec2 {
+    if (measuring) {
+      shown.push_back({tick, Clock::now()});
+      confirmed.push_back(shown.back());
+      ++result.inputs;
+    }
+    return bot_acceleration(config, index, tick);
+  };
+
+  for (const auto settled = Clock::now() + config.settle; Clock::now() < settled;) {
+    if (bot.poll(settled, input) == PollResult::Ended) break;
+  }
+  measuring = true;
+  const auto begin = Clock::now();
+  const auto end = begin + config.duration;
+  const PredictingStats before = bot.stats();
+  std::optional<std::uint64_t> first_tick;
+  std::uint64_t last_tick = 0;
+  Clock::time_point first_at{};
+  Clock::time_point last_at{};
+  while (Clock::now() < end) {
+    const PollResult polled = bot.poll(end, input);
+    if (polled == PollResult::Ended) {
+      result.failure = bot.error();
+      break;
+    }
+    // The state shown now is the prediction at predicted_tick().
+    const auto now = Clock::now();
+    const std::uint64_t predicted = bot.core().predicted_tick();
+    while (!shown.empty() && predicted >= shown.front().tick) {
+      result.visible_ms.push_back(
+          std::chrono::duration<double, std::milli>(now - shown.front().sent_at).count());
+      shown.pop_front();
+    }
+    if (polled != PollResult::Snapshot) continue;
+    const Snapshot& snapshot = *bot.last_snapshot();
+    if (!first_tick) {
+      first_tick = snapshot.tick;
+      first_at = snapshot.received_at;
+    }
+    last_tick = std::max(last_tick, snapshot.tick);
+    last_at = snapshot.received_at;
+    if (const InputPacer* pacer = bot.pacer()) result.delays.push_back(pacer->clock().delay());
+    while (!confirmed.empty() && snapshot.has_applied_input &&
+           snapshot.last_applied_input_tick >= confirmed.front().tick) {
+      result.latencies_ms.push_back(std::chrono::duration<double, std::milli>(
+                                        snapshot.received_at - confirmed.front().sent_at)
+                                        .count());
+      confirmed.pop_front();
+    }
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+  if (first_tick && last_at > first_at) {
+    result.ticks_per_second = static_cast<double>(last_tick - *first_tick) /
+                              std::chrono::duration<double>(last_at - first_at).count();
+  }
+  const PredictingStats after = bot.stats();
+  if (const InputPacer* pacer = bot.pacer()) {
+    result.final_delay = pacer->clock().delay();
+    result.margins = pacer->stats().margins_seen;
+    result.late_margins = pacer->stats().late_margins;
+  }
+  result.bytes = after.bytes_received - before.bytes_received;
+  result.snapshots = after.snapshots - before.snapshots;
+  result.dropped = bot.connection().stats().snapshots_dropped;
+  result.unanswered = confirmed.size();
+  result.rollbacks = after.prediction.rollbacks - before.prediction.rollbacks;
+  result.resimulated = after.prediction.resimulated_ticks - before.prediction.resimulated_ticks;
+  result.largest_correction = after.prediction.largest_correction;
+  result.largest_smoothed_correction = after.prediction.largest_smoothed_correction;
+  result.desyncs = after.prediction.desyncs;
+  result.resyncs = after.prediction.resyncs;
+  bot.disconnect("load run finished");
+}
+
+}  // namespace client
