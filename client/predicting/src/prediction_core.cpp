@@ -150,7 +150,11 @@ void PredictionCore::on_snapshot(const Snapshot& snapshot) {
 }
 
 bool PredictionCore::matches(const physics::wire::RelayTick& relay) const {
-  if (relay.changes_size() != 0) return false;
+  // Bodies added or removed, or the game's rules at work: nothing predicted them.
+  if (relay.changes_size() != 0 || relay.before_step_size() != 0 ||
+      relay.after_step_size() != 0) {
+    return false;
+  }
   const Slot& predicted = ring_[static_cast<std::size_t>(relay.tick() % ring_.size())];
   if (predicted.tick != relay.tick()) return false;
   phys::Vec2 own = confirmed_own_acceleration_;
@@ -193,6 +197,12 @@ bool PredictionCore::apply(const physics::wire::RelayTick& relay) {
     if (const auto own = world_.body(id_of(own_))) confirmed_own_acceleration_ = own->acceleration;
   }
   step_world();
+  const relay::FollowResult after = relay::apply_after_step(world_, relay);
+  if (after.problem != relay::FollowProblem::None) {
+    ++stats_.bad_changes;
+    ask_full_state(after.detail);
+    return false;
+  }
   confirmed_tick_ = relay.tick();
   ++stats_.confirmed_ticks;
   if (relay.has_state_hash()) check_hash(relay.tick(), relay.state_hash(), world_.state_hash());

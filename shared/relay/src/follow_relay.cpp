@@ -97,11 +97,15 @@ FollowResult apply_changes_and_inputs(phys::World& world, const physics::wire::R
   return apply_list(world, tick.tick(), tick.before_step());
 }
 
+FollowResult apply_after_step(phys::World& world, const physics::wire::RelayTick& tick) {
+  return apply_list(world, tick.tick(), tick.after_step());
+}
+
 FollowResult follow(phys::World& world, const physics::wire::RelayTick& tick, double dt) {
   FollowResult result = apply_changes_and_inputs(world, tick);
   if (result.problem != FollowProblem::None) return result;
   world.step(dt);
-  result = apply_list(world, tick.tick(), tick.after_step());
+  result = apply_after_step(world, tick);
   if (result.problem != FollowProblem::None) return result;
   if (tick.has_state_hash()) {
     result.hash_checked = true;

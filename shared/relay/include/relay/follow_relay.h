@@ -44,6 +44,9 @@ FollowResult follow(phys::World& world, const physics::wire::RelayTick& tick, do
 // applies after_step itself).
 FollowResult apply_changes_and_inputs(phys::World& world, const physics::wire::RelayTick& tick);
 
+// The rules' after_step changes, once the world has stepped.
+FollowResult apply_after_step(phys::World& world, const physics::wire::RelayTick& tick);
+
 // The world of a Welcome.world_state or Snapshot.world_state; nullopt and *error
 // when the bytes are not a world (World::from_bytes).
 std::optional<phys::World> world_from(const std::string& bytes, std::string* error = nullptr);
