@@ -63,6 +63,12 @@ const std::map<ClientId, phys::BodyId>& GameWorld::players() const {
 const std::vector<phys::ContactEvent>& GameWorld::contact_events() const {
   return simulation_.world_.contact_events();
 }
+const std::vector<phys::SensorEvent>& GameWorld::sensor_events() const {
+  return simulation_.world_.sensor_events();
+}
+std::optional<phys::BodyId> GameWorld::find_body(std::string_view name) const {
+  return simulation_.world_.find_body(name);
+}
 std::uint64_t GameWorld::state_hash() const { return simulation_.world_.state_hash(); }
 
 const std::vector<ClientGameMessage>& GameWorld::messages() const {

@@ -341,4 +341,45 @@ TEST(GameMessages, TheRulesSendToOneOrAll) {
   EXPECT_TRUE(sim.take_outgoing_messages().empty());
 }
 
+// A goal: a named sensor the rules find by name, and a ball sent through it; the
+// rules see it enter and leave at the steps it does.
+class GoalRules : public GameRules {
+ public:
+  std::vector<std::string> seen;
+  void on_create(GameWorld& w) override {
+    phys::BodyDef goal;
+    goal.shape = phys::Shape::Box;
+    goal.motion = phys::Motion::Static;
+    goal.is_sensor = true;
+    goal.name = "goal";
+    goal.position = {5.0, 0.0};
+    goal.half_extents = {1.0, 1.0};
+    w.create(goal);
+    phys::BodyDef ball;
+    ball.shape = phys::Shape::Circle;
+    ball.radius = 0.25;
+    ball.position = {0.0, 0.0};
+    ball.velocity = {6.0, 0.0};  // 0.1 m a tick
+    ball.name = "ball";
+    w.create(ball);
+  }
+  void after_step(GameWorld& w) override {
+    const auto goal = w.find_body("goal");
+    for (const phys::SensorEvent& e : w.sensor_events()) {
+      EXPECT_EQ(e.sensor, *goal);
+      seen.push_back((e.kind == phys::SensorEventKind::Begin ? "in@" : "out@") +
+                     std::to_string(w.tick()));
+    }
+  }
+};
+
+TEST(GameRules, TheRulesFindBodiesByNameAndSeeSensorEvents) {
+  auto rules = std::make_shared<GoalRules>();
+  Simulation sim(server_test::free_space_scene(), {}, rules);
+  for (int i = 0; i < 80; ++i) sim.step_tick();
+  // Its right edge 0.1 n + 0.25 passes the goal's left side (4) at tick 38; its
+  // left edge 0.1 n - 0.25 reaches the goal's right side (6) at tick 63.
+  EXPECT_EQ(rules->seen, (std::vector<std::string>{"in@38", "out@63"}));
+}
+
 }  // namespace

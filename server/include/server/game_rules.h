@@ -20,6 +20,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "physics/world.h"
@@ -83,6 +84,10 @@ class GameWorld {
   const std::map<ClientId, phys::BodyId>& players() const;
   // The last step's contact events (after_step; GameRules::wants_contact_events).
   const std::vector<phys::ContactEvent>& contact_events() const;
+  // The last step's sensor events (after_step): bodies entering and leaving sensors.
+  const std::vector<phys::SensorEvent>& sensor_events() const;
+  // A body by its name (the lowest id of that name), and a body's name.
+  std::optional<phys::BodyId> find_body(std::string_view name) const;
   std::uint64_t state_hash() const;
 
   // The players' game messages for this tick (before_step; empty elsewhere), in
