@@ -4,7 +4,6 @@
 // their little-endian bit patterns (every platform the core is built for is
 // little-endian: checked at compile time). The grid of static and sleeping bodies
 // is not written: it is built from their boxes, as the world builds it.
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -14,7 +13,9 @@
 
 namespace phys {
 
-static_assert(std::endian::native == std::endian::little,
+// Compilers' own macro rather than std::endian, which not every standard library
+// the core is built with (emscripten's) has.
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
               "world bytes are little-endian bit patterns");
 
 namespace {
