@@ -5,6 +5,7 @@
 // little-endian: checked at compile time). The grid of static and sleeping bodies
 // is not written: it is built from their boxes, as the world builds it.
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <type_traits>
