@@ -21,7 +21,7 @@ results="$here/results"
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
-      rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth)
+      rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth vocabulary-cost)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -54,6 +54,7 @@ declare -A writes=(
   [wasm-speed]="wasm-speed.csv"
   [save-restore]="save-restore.json"
   [relay-bandwidth]="netbench-relay.csv"
+  [vocabulary-cost]="vocabulary-cost.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
     netbench-pyramid-one-driver.csv"
@@ -238,6 +239,9 @@ run_rain-position-passes() {  # what the position passes after the first cost, r
 }
 run_det-math-comparison() {  # the core with its own exp/expm1/log against the one with libm's
   OUT="$out/core-comparison-det-math.csv" "$here/compare-core.sh" "${DET_MATH_BASELINE:-0da0b44}"
+}
+run_vocabulary-cost() {  # filters, sensors, kinematic bodies in instructions (needs BASELINE_HASHES)
+  BUILD_DIR="$build" "$here/vocabulary-cost.sh"
 }
 run_wasm-speed() {  # the WebAssembly core's step time against native (needs build-wasm/)
   OUT="$out/wasm-speed.csv" "$here/wasm-speed.sh"
