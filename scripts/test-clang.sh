@@ -1,22 +1,20 @@
 #!/usr/bin/env bash
 # Determinism across compilers: builds the physics core and the suites that hold
 # golden state hashes (core unit tests with the determinism test, stability, scene,
-# the server's Simulation) with Debian's clang 14 into build-clang/ and runs them.
+# the server's Simulation) with Debian's clang 14, in the sanitized clang build the
+# three clang scripts share (scripts/lib/clang-build.sh), and runs them.
 # The goldens are gcc's values, so passing means clang's results equal gcc's. Then
 # it runs every scene in scenes/ for 600 steps with physics-sim built by gcc
 # (build/, or GCC_BUILD_DIR) and by clang, prints both hashes and fails on any
 # difference.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build_dir="${CLANG_BUILD_DIR:-build-clang}"
+source scripts/lib/clang-build.sh
+build_dir="$clang_build_dir"
 gcc_dir="${GCC_BUILD_DIR:-build}"
 steps=600
 
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
-  -DPHYSICS_WARNINGS_AS_ERRORS=ON -DPHYSICS_BUILD_BENCH=OFF
-cmake --build "$build_dir" -j "$(nproc)" \
-  --target core_unit_tests stability_tests scene_tests server_tests physics-sim
+clang_build core_unit_tests stability_tests scene_tests server_tests physics-sim
 # Every test of the core and stability suites, the scene suite and physics-sim's golden.
 ctest --test-dir "$build_dir" --output-on-failure -j "$(nproc)" --timeout 900 \
   -L '^(unit|stability)$'

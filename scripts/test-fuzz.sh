@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses of tests/fuzz with clang 14 into build-fuzz/ and runs
+# Builds the libFuzzer harnesses of tests/fuzz in the clang build the three clang
+# scripts share (scripts/lib/clang-build.sh, build-clang/) and runs
 # each for FUZZ_SECONDS (default 15 s, CI's short run) from its committed seeds in
 # tests/fuzz/corpus/NAME/; any crash, leak, sanitizer report or timeout fails the run,
-# and the input that did it is left in build-fuzz/artifacts/.
+# and the input that did it is left in build-clang/artifacts/.
 #   scripts/test-fuzz.sh            build and fuzz, 15 s each
 #   scripts/test-fuzz.sh --long     the nightly (or local) run: 600 s each, unless
 #                                   FUZZ_SECONDS says otherwise
@@ -10,22 +11,16 @@
 # FUZZ_HARNESSES="replay scene" runs only those (default: all five).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-build_dir="${FUZZ_BUILD_DIR:-build-fuzz}"
+source scripts/lib/clang-build.sh
+build_dir="$clang_build_dir"
 default_seconds=15
 if [ "${1:-}" = "--long" ]; then default_seconds=600; fi
 seconds="${FUZZ_SECONDS:-$default_seconds}"
 read -r -a harnesses <<<"${FUZZ_HARNESSES:-server_messages client snapshot scene replay}"
-werror=OFF
-if [ "${CI:-}" = "true" ]; then werror=ON; fi
 
-# -O1 -g without NDEBUG: fast enough to fuzz, asserts on, readable stacks.
-cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g" \
-  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DPHYSICS_FUZZ=ON \
-  -DPHYSICS_BUILD_BENCH=OFF -DPHYSICS_WARNINGS_AS_ERRORS="$werror"
 targets=(make_fuzz_seeds)
 for name in "${harnesses[@]}"; do targets+=("${name}_fuzz"); done
-cmake --build "$build_dir" -j "$(nproc)" --target "${targets[@]}"
+clang_build "${targets[@]}"
 
 if [ "${1:-}" = "--seeds" ]; then
   # Overwrites the generated seeds; inputs kept by hand (crashes found) stay.
@@ -34,8 +29,6 @@ if [ "${1:-}" = "--seeds" ]; then
   exit 0
 fi
 
-export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1"
-export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 mkdir -p "$build_dir/artifacts"
 for name in "${harnesses[@]}"; do
   # New inputs go to a scratch corpus; the committed seeds are only read.
