@@ -23,13 +23,18 @@ set(PHYSICS_EXPORT_SET physics_server_targets)
 # HEADERS: folders whose *.h files are installed with their relative paths (a build
 # folder works too: proto/ installs its generated *.pb.h so);
 # HEADER_FILES: single headers installed at the include root.
-# The target's include directories, absolute paths of the source or build tree, are
+# Also defines the alias physics::NAME in the tree. The target's include directories, absolute paths of the source or build tree, are
 # marked as build-tree only; installed, the target includes the installed headers.
 function(physics_install_library target)
   cmake_parse_arguments(arg "" "EXPORT_NAME" "HEADERS;HEADER_FILES" ${ARGN})
+  set(exported ${target})
   if(arg_EXPORT_NAME)
     set_target_properties(${target} PROPERTIES EXPORT_NAME ${arg_EXPORT_NAME})
+    set(exported ${arg_EXPORT_NAME})
   endif()
+  # The package's name in the tree too, so that a project built here (examples/)
+  # links the same names as one built against the installed package.
+  add_library(physics::${exported} ALIAS ${target})
   get_target_property(dirs ${target} INTERFACE_INCLUDE_DIRECTORIES)
   if(dirs)
     set(wrapped "")

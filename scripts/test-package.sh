@@ -2,7 +2,8 @@
 # The installed package as a user gets it: installs the product from the build
 # directory into a temporary prefix, builds tests/package/ (a project of its own)
 # against that prefix with find_package alone, and runs its tests; then builds one
-# program with the pkg-config file's flags alone. Builds the build directory first
+# program with the pkg-config file's flags alone. The examples (examples/*/) are built
+# against the same prefix and their tests run. Builds the build directory first
 # (scripts/build.sh when it is not configured yet).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -37,6 +38,17 @@ if grep -F "$root" "$work/consumer-build/compile_commands.json" > /dev/null; the
   exit 1
 fi
 ctest --test-dir "$work/consumer-build" --output-on-failure --timeout 120
+
+# The examples (examples/*/), each a game team's own project, against the package:
+# built, and their tests (label example) run.
+for example in examples/*/; do
+  name="$(basename "$example")"
+  cmake -S "$example" -B "$work/$name-build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_PREFIX_PATH="$prefix" > "$work/$name-configure.log" \
+    || { cat "$work/$name-configure.log"; exit 1; }
+  cmake --build "$work/$name-build" -j "$(nproc)"
+  ctest --test-dir "$work/$name-build" --output-on-failure --timeout 120 -L example
+done
 
 pc_dir="$(dirname "$(find "$prefix" -name physics_server.pc | head -n 1)")"
 # shellcheck disable=SC2046  # the flags are words

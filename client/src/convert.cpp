@@ -54,6 +54,9 @@ BodyShape from_wire(const pb::BodyShape& message) {
   shape.mass = message.mass();
   shape.restitution = message.restitution();
   shape.friction = vec(message.friction());
+  shape.name = message.name();
+  shape.is_kinematic = message.is_kinematic();
+  shape.is_sensor = message.is_sensor();
   return shape;
 }
 

@@ -33,6 +33,9 @@ struct BodyShape {
   double mass = 0.0;
   double restitution = 0.0;
   Vec2 friction;
+  std::string name;           // the scene's or the game's name for it; empty: none
+  bool is_kinematic = false;  // moved by its velocity alone, infinite mass
+  bool is_sensor = false;     // detects overlaps, collides with nothing
 
   // Half the size of the axis-aligned box it occupies: a box's half extents, a
   // circle's (radius, radius), as the server sizes bodies.
