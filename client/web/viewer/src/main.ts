@@ -5,8 +5,9 @@
 //   ?ws=ws://127.0.0.1:PORT/   the server's --ws-port (default ws://127.0.0.1:7778/)
 //   &spectate=1                watch without a body
 //   &name=N &token=T           Hello.client_name, Hello.access_token
+//   &encoding=predicted|exact|full   the view's encoding (default predicted)
 // window.physicsViewer exposes what the page holds and drew, for tests and the console.
-import { Client, ConnectionState, PlayoutBuffer, type BodyShape, type Snapshot } from "@physics/client";
+import { Client, ConnectionState, PlayoutBuffer, type BodyShape, type Encoding, type Snapshot } from "@physics/client";
 import { type Camera, fit, toPixel } from "./camera";
 import * as palette from "./palette";
 
@@ -23,7 +24,14 @@ const spectate = params.get("spectate") === "1";
 
 const canvas = document.getElementById("view") as HTMLCanvasElement;
 const context = canvas.getContext("2d")!;
-const client = new Client({ url, spectate, name: params.get("name") ?? "web-viewer", token: params.get("token") ?? "" });
+const encoding = (params.get("encoding") ?? "predicted") as Encoding;
+const client = new Client({
+  url,
+  spectate,
+  name: params.get("name") ?? "web-viewer",
+  token: params.get("token") ?? "",
+  view: { encoding },
+});
 const shapes = new Map<bigint, BodyShape>();
 let playout: PlayoutBuffer | undefined;
 let camera: Camera | undefined;
