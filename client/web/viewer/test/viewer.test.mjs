@@ -4,6 +4,7 @@
 // arrow key held in the page moves the page's own body, as that client sees it.
 import { after, before, describe, test } from "node:test";
 import assert from "node:assert/strict";
+import { writeFileSync } from "node:fs";
 import WebSocket from "ws";
 import { Client, boxHalfSize } from "@physics/client";
 import { startServer } from "../../client/test/server.mjs";
@@ -114,7 +115,10 @@ describe("the viewer", () => {
         truth.bodies.map((b) => [String(b.bodyId), b.position.x, b.position.y]),
       );
 
-      const shot = pixels(await page.screenshot());
+      const png = await page.screenshot();
+      // docs/images/web-viewer.png is this picture (docs/WEB.md).
+      if (process.env.WEB_VIEWER_SCREENSHOT) writeFileSync(process.env.WEB_VIEWER_SCREENSHOT, png);
+      const shot = pixels(png);
       assert.equal(shot.width, 960);
       const welcome = beside.client.welcome;
       const camera = fit(welcome.bodies, shot.width, shot.height);
