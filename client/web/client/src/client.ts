@@ -138,7 +138,8 @@ export class Client {
   get welcome(): Welcome | undefined {
     return this.welcome_;
   }
-  /** The close frame's code and reason, once the connection closed. */
+  /** The close frame's code and reason, when the server closed the connection before
+   * the client did (after a fatal Error the client closes at once, as the C++ one does). */
   get closeEvent(): { code: number; reason: string } | undefined {
     return this.close_;
   }
