@@ -130,6 +130,47 @@ describe("a fixed rate on the default scene", () => {
     c.disconnect();
   });
 
+  test("a player's radius of interest, its own contacts, a full state on request", async () => {
+    const c = await connected(server, { view: { interestRadius: 3 }, contacts: {} });
+    assert.equal(c.welcome.view.interestRadius, 3);
+    const first = await c.nextSnapshot(5000);
+    assert.ok(first.full);
+    const all = c.welcome.bodies.filter((b) => !b.isStatic).length;
+    let s = first;
+    for (let n = 0; n < 30; ++n) {
+      const own = s.own.position;
+      for (const b of s.bodies) {
+        // Within the radius, give or take the tolerance and a tick of motion.
+        assert.ok(Math.hypot(b.position.x - own.x, b.position.y - own.y) < 3.5, `body ${b.bodyId} outside the radius`);
+      }
+      assert.ok(s.bodies.length < all, `${s.bodies.length} of ${all} dynamic bodies held`);
+      for (const e of s.contactEvents) assert.ok(e.bodyA === c.welcome.bodyId || e.bodyB === c.welcome.bodyId);
+      s = await c.nextSnapshot(5000);
+      assert.ok(s);
+    }
+    const fullStates = c.stats.fullStatesReceived;
+    assert.ok(c.requestFullState());
+    const full = await c.waitForSnapshot(5000, (x) => x.full);
+    assert.ok(full, "no full state after a FullStateRequest");
+    assert.equal(c.stats.fullStatesReceived, fullStates + 1);
+    assert.equal(c.stats.desyncs, 0);
+    c.disconnect();
+  });
+
+  test("newestSnapshot drops the older snapshots and acknowledges the newest", async () => {
+    const c = await connected(server, { spectate: true, view: { viewHashInterval: 1 } });
+    await c.nextSnapshot(5000);
+    for (let i = 0; i < 250 && c.bufferedSnapshots < 2; ++i) await sleep(20);
+    assert.ok(c.bufferedSnapshots >= 2, "fewer than 2 snapshots in 5 s");
+    const buffered = c.bufferedSnapshots;
+    const acks = c.stats.acksSent;
+    const newest = await c.newestSnapshot(5000);
+    assert.ok(newest);
+    assert.equal(c.bufferedSnapshots, 0);
+    assert.equal(c.stats.acksSent, acks + 1, `one Ack for ${buffered} snapshots`);
+    c.disconnect();
+  });
+
   test("Bye removes the player's body: a spectator sees it in removed", async () => {
     const watcher = await connected(server, { spectate: true });
     const player = await connected(server);
