@@ -21,7 +21,8 @@ results="$here/results"
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
-      rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth vocabulary-cost)
+      rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth vocabulary-cost
+      web-client)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -55,6 +56,7 @@ declare -A writes=(
   [save-restore]="save-restore.json"
   [relay-bandwidth]="netbench-relay.csv"
   [vocabulary-cost]="vocabulary-cost.csv"
+  [web-client]="web-client.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
     netbench-pyramid-one-driver.csv"
@@ -245,6 +247,9 @@ run_vocabulary-cost() {  # filters, sensors, kinematic bodies in instructions (n
 }
 run_wasm-speed() {  # the WebAssembly core's step time against native (needs build-wasm/)
   OUT="$out/wasm-speed.csv" "$here/wasm-speed.sh"
+}
+run_web-client() {  # the TypeScript client's cost per snapshot received, in node (needs npm)
+  OUT="$out/web-client.csv" "$here/web-client.sh"
 }
 run_soak() {  # 64 churning clients on moving-1000 for 10 minutes, replayed (physics-soak)
   local soak="$build/tests/soak/physics-soak"

@@ -5,6 +5,7 @@
 #   scripts/install-deps.sh aarch64   the AArch64 cross build and its emulator
 #                                     (scripts/test-aarch64.sh)
 #   scripts/install-deps.sh wasm      emscripten and node (scripts/test-wasm.sh)
+#   scripts/install-deps.sh web       Chromium, protoc, node and npm (scripts/test-web.sh)
 set -euo pipefail
 
 case "${1:-}" in
@@ -13,6 +14,13 @@ case "${1:-}" in
   wasm)
     packages=(emscripten)
     command -v node >/dev/null || packages+=(nodejs)
+    ;;
+  # The browser the viewer's test drives (through puppeteer-core), protoc for the
+  # client's generated code; node and npm where no node is installed yet.
+  web)
+    packages=(chromium protobuf-compiler)
+    command -v node >/dev/null || packages+=(nodejs)
+    command -v npm >/dev/null || packages+=(npm)
     ;;
   "") packages=(
   build-essential cmake ninja-build pkg-config
@@ -33,7 +41,7 @@ case "${1:-}" in
   # window's test runs under a virtual X server (xvfb).
   libsdl2-dev libstb-dev xvfb
 ) ;;
-  *) echo "usage: scripts/install-deps.sh [aarch64|wasm]" >&2; exit 2 ;;
+  *) echo "usage: scripts/install-deps.sh [aarch64|wasm|web]" >&2; exit 2 ;;
 esac
 
 missing=()

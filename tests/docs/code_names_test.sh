@@ -2,7 +2,7 @@
 # Every code name the docs cite in backquotes with `::` or `()` (README.md, CHANGELOG.md,
 # docs/*.md) exists in the source tree, so that a rename cannot leave a doc behind:
 #   - each part of `a::b::c` and the `f` of `f()` is a word of the code (sources,
-#     .proto, CMake and shell files);
+#     TypeScript included, .proto, CMake and shell files);
 #   - the last two parts of a qualified name, `Type::member`, appear in one file
 #     together (a `StepRunner::run` fails once no file holds both).
 # Code blocks (```) are skipped: they are examples, built by their own tests.
@@ -14,8 +14,9 @@ code_files=()
 while IFS= read -r -d '' file; do code_files+=("$file"); done < <(
   find server client shared testing tests bench proto cmake scripts -type f \
     \( -name '*.h' -o -name '*.cpp' -o -name '*.proto' -o -name '*.cmake' \
-       -o -name 'CMakeLists.txt' -o -name '*.sh' -o -name '*.in' \) \
-    ! -path tests/docs/code_names_test.sh -print0 | sort -z)
+       -o -name 'CMakeLists.txt' -o -name '*.sh' -o -name '*.in' -o -name '*.ts' \) \
+    ! -path tests/docs/code_names_test.sh ! -path '*/node_modules/*' ! -path '*/dist/*' \
+    ! -path '*/src/gen/*' -print0 | sort -z)
 words="$(mktemp)"
 trap 'rm -f "$words"' EXIT
 grep -ohE '[A-Za-z_][A-Za-z0-9_]*' "${code_files[@]}" | sort -u > "$words"

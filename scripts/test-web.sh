@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The web packages (docs/WEB.md): installs what is missing (Chromium, protoc, node and
+# npm: scripts/install-deps.sh web), then in client/web/client (@physics/client) and
+# client/web/viewer (the browser viewer) `npm ci` and `npm run build`, and runs their
+# node tests against a real physics-server over WebSocket: the client's (the worked
+# examples of docs/PROTOCOL.md 5.7, 600 lockstep ticks of moving-1000 with the view
+# hash compared on every snapshot, the views, the refusals) and the viewer's in
+# headless Chromium (a screenshot's pixels against the server's bodies, the arrow
+# keys). The server is $PHYSICS_SERVER, or build/server/physics-server (scripts/test.sh
+# builds it first in CI; when it is missing, this builds that one target).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir="${BUILD_DIR:-build}"
+
+bash scripts/install-deps.sh web
+
+server="${PHYSICS_SERVER:-$build_dir/server/physics-server}"
+if [ ! -x "$server" ]; then
+  echo "test-web: no $server: building it"
+  bash scripts/install-deps.sh
+  extra=()
+  if [ "${CI:-}" = "true" ]; then extra+=(-DPHYSICS_WARNINGS_AS_ERRORS=ON); fi
+  if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+    cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" "${extra[@]}"
+  fi
+  cmake --build "$build_dir" -j "$(nproc)" --target physics-server
+fi
+PHYSICS_SERVER="$(realpath "$server")"
+export PHYSICS_SERVER
+echo "test-web: node $(node --version), npm $(npm --version), $(protoc --version), $(/usr/bin/chromium --version 2>/dev/null || echo 'no chromium')"
+
+# The viewer depends on the client package (file:../client): the client builds first.
+for package in client/web/client client/web/viewer; do
+  (cd "$package" && npm ci --no-audit --no-fund --loglevel=error && npm run --silent build)
+done
+
+failed=0
+(cd client/web/client && npm test) || failed=1
+(cd client/web/viewer && npm test) || failed=1
+exit "$failed"
