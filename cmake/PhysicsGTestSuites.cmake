@@ -14,6 +14,12 @@ set(PHYSICS_GTEST_SUITES_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/physics_gtest_suites_
 
 function(physics_gtest_suites target)
   cmake_parse_arguments(arg "" "TIMEOUT;DISCOVERY_TIMEOUT" "LABELS" ${ARGN})
+  # The tests' own code at -O1 in an optimised build: the code under test is in the
+  # libraries, which keep the build type's -O3; the tests' setup and assertions
+  # compile about 30% faster so (a clean build's time is mostly test files).
+  if(CMAKE_BUILD_TYPE MATCHES "^(Release|RelWithDebInfo)$")
+    target_compile_options(${target} PRIVATE -O1)
+  endif()
   if(NOT arg_DISCOVERY_TIMEOUT)
     set(arg_DISCOVERY_TIMEOUT 30)
   endif()

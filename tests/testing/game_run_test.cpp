@@ -75,11 +75,11 @@ TEST(GameRun, CallsTheRulesAsTheServerDoesAndKeepsEachTick) {
     EXPECT_EQ(run.tick(), 3u);
     ASSERT_TRUE(run.body("crate"));
     EXPECT_LT(run.body("crate")->position.y, 15.0);  // made before tick 3's step, fell in it
+    ASSERT_EQ(run.history().size(), 3u);
+    EXPECT_EQ(run.history().back().state_hash, run.world().state_hash());
     ASSERT_TRUE(run.leave(*a));
     EXPECT_FALSE(run.leave(*a));
     EXPECT_FALSE(run.input(*a, 1.0, 0.0));
-    ASSERT_EQ(run.history().size(), 3u);
-    EXPECT_EQ(run.history().back().state_hash, run.world().state_hash());
   }
   const std::vector<std::string> expected{"create",
                                           "join 1",
