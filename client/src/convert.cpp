@@ -98,6 +98,11 @@ Snapshot header_from_wire(const pb::Snapshot& message) {
                                        vec(e.normal()), e.closing_speed()});
   }
   snapshot.contact_events_dropped = message.contact_events_dropped();
+  snapshot.sensor_events.reserve(static_cast<std::size_t>(message.sensor_events_size()));
+  for (const auto& e : message.sensor_events()) {
+    snapshot.sensor_events.push_back({e.end(), e.tick(), e.sensor(), e.visitor()});
+  }
+  snapshot.sensor_events_dropped = message.sensor_events_dropped();
   if (message.has_input_margin_us()) snapshot.input_margin_us = message.input_margin_us();
   snapshot.relay.reserve(static_cast<std::size_t>(message.relay_size()));
   for (const auto& tick : message.relay()) snapshot.relay.push_back(tick.SerializeAsString());
@@ -174,6 +179,7 @@ pb::ClientMessage make_hello(const ClientConfig& config) {
   options.view = to_wire(config.view);
   options.spectate = config.spectate;
   options.want_world = config.want_world;
+  options.sensor_events = config.sensor_events;
   options.seat = config.seat;
   if (config.contacts) {
     pb::ContactSubscription& contacts = options.contacts.emplace();

@@ -47,6 +47,13 @@ std::string resolve_contacts(const physics::wire::ContactSubscription& request, 
   return {};
 }
 
+void fill_sensor_event(const phys::SensorEvent& event, physics::wire::SensorEvent& out) {
+  out.set_end(event.kind == phys::SensorEventKind::End);
+  out.set_tick(event.step);
+  out.set_sensor(event.sensor.packed());
+  out.set_visitor(event.visitor.packed());
+}
+
 void fill_contact_event(const phys::ContactEvent& event, physics::wire::ContactEvent& out) {
   out.set_end(event.kind == phys::ContactEventKind::End);
   out.set_tick(event.step);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "physics/contact_events.h"
+#include "physics/sensor_events.h"
 #include "wire.pb.h"
 
 namespace server {
@@ -37,5 +38,12 @@ std::string resolve_contacts(const physics::wire::ContactSubscription& request, 
                              ContactFilter& filter);
 
 void fill_contact_event(const phys::ContactEvent& event, physics::wire::ContactEvent& out);
+
+// Sensor events (Hello.sensor_events) go to a subscriber as contact events do, with
+// the same limits: at most this many in one snapshot, this many waiting.
+inline constexpr std::size_t kMaxSensorEventsPerSnapshot = kMaxContactEventsPerSnapshot;
+inline constexpr std::size_t kMaxPendingSensorEvents = kMaxPendingContactEvents;
+
+void fill_sensor_event(const phys::SensorEvent& event, physics::wire::SensorEvent& out);
 
 }  // namespace server

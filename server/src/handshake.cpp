@@ -102,6 +102,7 @@ HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wir
     }
     decision.contacts = std::move(contacts);
   }
+  decision.sensor_events = hello.sensor_events();
   if (hello.spectate()) return decide_spectator(client, std::move(decision));
   return decide_player(client, hello, simulation, address, std::move(decision));
 }

@@ -55,6 +55,7 @@ struct HelloDecision {
   // from then on, even when a later check refuses the Hello (the connection's close
   // forgets it).
   std::optional<ContactFilter> contacts;
+  bool sensor_events = false;  // Hello.sensor_events, held as the contacts are
   wire::ViewSettings view;                      // all but Refused
   phys::BodyId body = phys::BodyId::invalid();  // Player: its body, in the world now
   std::uint32_t seat = 0;                       // Player, Lobby

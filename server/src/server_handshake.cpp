@@ -41,6 +41,7 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
       handshake_.decide(session.id(), session.joined(), hello, simulation_, session.address());
   // Held from its check on, whatever follows; on_closed forgets it.
   if (decision.contacts) feeds_.subscribe_contacts(session.id(), std::move(*decision.contacts));
+  if (decision.sensor_events) feeds_.subscribe_sensor_events(session.id());
   switch (decision.outcome) {
     case HelloDecision::Outcome::Refused:
       session.close_with_error(decision.refusal.code, decision.refusal.text,

@@ -65,10 +65,32 @@ void SnapshotFeeds::join(FeedClient client, const wire::ViewSettings& settings,
 void SnapshotFeeds::leave(FeedClient client) {
   drop_feed(client);
   contact_filters_.erase(client);
+  sensor_subscribers_.erase(client);
 }
 
 void SnapshotFeeds::subscribe_contacts(FeedClient client, ContactFilter filter) {
   contact_filters_[client] = std::move(filter);
+}
+
+void SnapshotFeeds::subscribe_sensor_events(FeedClient client) {
+  sensor_subscribers_.insert(client);
+}
+
+// Every subscriber that has joined files every sensor event.
+void SnapshotFeeds::file_sensor_events(const TruthFrame& frame) {
+  if (frame.sensor_events.empty()) return;
+  for (const FeedClient client : sensor_subscribers_) {
+    const auto it = feeds_.find(client);
+    if (it == feeds_.end()) continue;
+    Feed& feed = it->second;
+    for (const phys::SensorEvent& event : frame.sensor_events) {
+      if (feed.pending_sensor_events.size() < kMaxPendingSensorEvents) {
+        feed.pending_sensor_events.push_back(event);
+      } else {
+        ++feed.dropped_sensor_events;
+      }
+    }
+  }
 }
 
 // Every subscriber that has joined files the events it subscribed to.
@@ -169,6 +191,18 @@ std::string SnapshotFeeds::tail_for(Feed& feed, const ClientFields& fields,
     own.set_contact_events_dropped(feed.dropped_contacts);
     feed.dropped_contacts = 0;
   }
+  const std::size_t sensed =
+      std::min(feed.pending_sensor_events.size(), kMaxSensorEventsPerSnapshot);
+  for (std::size_t i = 0; i < sensed; ++i) {
+    fill_sensor_event(feed.pending_sensor_events[i], *own.add_sensor_events());
+  }
+  feed.pending_sensor_events.erase(
+      feed.pending_sensor_events.begin(),
+      feed.pending_sensor_events.begin() + static_cast<std::ptrdiff_t>(sensed));
+  if (feed.dropped_sensor_events > 0) {
+    own.set_sensor_events_dropped(feed.dropped_sensor_events);
+    feed.dropped_sensor_events = 0;
+  }
   // The input fields go only when they changed: a client keeps the last it got.
   if (!feed.fields_ever_sent ||
       fields.last_applied_input_tick != feed.fields_sent.last_applied_input_tick ||
@@ -185,6 +219,7 @@ std::vector<FeedOutput> SnapshotFeeds::run(const TruthFrame& frame, const phys::
                                            const std::map<FeedClient, ClientFields>& fields,
                                            std::chrono::steady_clock::time_point now) {
   file_contact_events(frame);
+  file_sensor_events(frame);
   std::vector<FeedOutput> outputs;
   std::vector<std::uint64_t> ids;
   for (const auto& [id, entry] : views_) ids.push_back(id);

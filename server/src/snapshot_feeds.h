@@ -74,6 +74,9 @@ class SnapshotFeeds {
   void subscribe_contacts(FeedClient client, ContactFilter filter);
   // Whether the world must produce contact events.
   bool any_contact_subscriber() const { return !contact_filters_.empty(); }
+  // Every sensor's events for `client` from its next snapshot on (Hello.sensor_events),
+  // until leave(). The world produces them always.
+  void subscribe_sensor_events(FeedClient client);
 
   // Bodies added to and removed from the world, for every client's next snapshot.
   void note_added(std::uint64_t id);
@@ -124,6 +127,9 @@ class SnapshotFeeds {
     // window is full), oldest first, and those lost over kMaxPendingContactEvents.
     std::vector<phys::ContactEvent> pending_contacts;
     std::uint32_t dropped_contacts = 0;
+    // The same for sensor events (kMaxPendingSensorEvents).
+    std::vector<phys::SensorEvent> pending_sensor_events;
+    std::uint32_t dropped_sensor_events = 0;
   };
   struct ViewEntry {
     std::unique_ptr<View> view;
@@ -140,6 +146,7 @@ class SnapshotFeeds {
   void move_to(FeedClient client, Feed& feed, std::uint64_t view);
   void drop_feed(FeedClient client);
   void file_contact_events(const TruthFrame& frame);
+  void file_sensor_events(const TruthFrame& frame);
   std::string tail_for(Feed& feed, const ClientFields& fields, const phys::World& world);
 
   wire::Predictor predictor_;
@@ -149,6 +156,7 @@ class SnapshotFeeds {
   bool lockstep_;
   std::map<FeedClient, Feed> feeds_;
   std::map<FeedClient, ContactFilter> contact_filters_;
+  std::set<FeedClient> sensor_subscribers_;
   std::map<std::uint64_t, ViewEntry> views_;
   std::uint64_t next_view_ = 1;
   FeedStats stats_;

@@ -53,6 +53,8 @@ TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthF
   }
   frame.contact_events = world.contact_events();
   for (phys::ContactEvent& event : frame.contact_events) event.step = tick;
+  frame.sensor_events = world.sensor_events();
+  for (phys::SensorEvent& event : frame.sensor_events) event.step = tick;
   return frame;
 }
 

@@ -31,6 +31,8 @@ struct TruthFrame {
   std::vector<TruthBody> bodies;  // dynamic bodies, ascending id
   // The tick's contact events (while the world produces them), step set to `tick`.
   std::vector<phys::ContactEvent> contact_events;
+  // The tick's sensor events (always produced), step set to `tick`.
+  std::vector<phys::SensorEvent> sensor_events;
 
   const TruthBody* find(std::uint64_t id) const;
 };

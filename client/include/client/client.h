@@ -58,6 +58,9 @@ struct ClientConfig {
   std::optional<std::uint32_t> seat;
   // Contact events in every snapshot (Hello.contacts): Snapshot::contact_events.
   std::optional<ContactSubscription> contacts;
+  // Every sensor's events in the snapshots (Hello.sensor_events):
+  // Snapshot::sensor_events.
+  bool sensor_events = false;
   // When set, every message received is appended, as it arrived, to this client
   // recording (docs/REPLAY.md, "Client recordings"). Created at the first connect()
   // (which fails with ConnectFailed when it cannot be), kept across reconnects.

@@ -125,6 +125,16 @@ struct Welcome {
   std::vector<std::uint8_t> world_state;
 };
 
+// A body began (end false) or ended to overlap a sensor, at the end of `tick`'s step
+// (Hello.sensor_events, docs/PROTOCOL.md "Sensor events").
+struct SensorEvent {
+  bool end = false;
+  std::uint64_t tick = 0;
+  std::uint64_t sensor = 0;  // body ids
+  std::uint64_t visitor = 0;
+  bool operator==(const SensorEvent&) const = default;
+};
+
 // Which contact events to receive (Hello.contacts, docs/PROTOCOL.md "Contact
 // events"). A player leaves both empty: its own body's. A spectator sets `all`, or
 // lists up to 64 body ids.
@@ -162,6 +172,10 @@ struct Snapshot {
   // first, and how many were lost over the server's limit.
   std::vector<ContactEvent> contact_events;
   std::uint32_t contact_events_dropped = 0;
+  // With ClientConfig::sensor_events: every sensor's events of the ticks since the
+  // previous snapshot, oldest first, and how many were lost over the server's limit.
+  std::vector<SensorEvent> sensor_events;
+  std::uint32_t sensor_events_dropped = 0;
   // How early this client's inputs for the ticks since the previous snapshot arrived
   // at the server, the least of them (negative: late); unset when none named such a
   // tick. InputClock takes it (docs/PROTOCOL.md 3.4).
