@@ -132,6 +132,8 @@ TEST(Attack, PingsBeforeHelloKeepNothingAlive) {
       refused += error->code() == pb::ERROR_SERVER_FULL || error->code() == pb::ERROR_RATE_LIMITED;
     }
   }
+  std::printf("pings before Hello: %d answered ERROR_UNEXPECTED_MESSAGE, %d refused at the cap\n",
+              unexpected, refused);
   EXPECT_GT(unexpected, 0);
   EXPECT_EQ(check_server_serves(server), "");
   EXPECT_TRUE(eventually([&] { return server.stats().open_connections == 0; }, 5s));
