@@ -62,7 +62,7 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
     // The state shown now is the prediction at predicted_tick().
     const auto now = Clock::now();
     if (now >= next_frame) {
-      [[maybe_unused]] const RenderState shown = bot.render();
+      [[maybe_unused]] const RenderState drawn = bot.render();
       const double cpu = thread_cpu_ms();
       result.frame_cpu_ms.push_back(cpu - frame_cpu_start);
       frame_cpu_start = cpu;
