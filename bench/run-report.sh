@@ -220,7 +220,8 @@ run_prediction() {  # the thin and the predicting client through one 100 ms path
   [[ -x "$netbench" ]] || { echo "run-report: $netbench not built" >&2; return 1; }
   "$netbench" --prediction \
     --prediction-scenes "$root/scenes/moving-1000.textproto,$root/scenes/large-4000.textproto" \
-    --prediction-bots 4 --prediction-one-way-ms 50 --prediction-jitter-ms 10 \
+    --prediction-bots 4 --prediction-predicting-bots 1 --prediction-one-way-ms 50 \
+    --prediction-jitter-ms 10 \
     --prediction-input-change-ms 500 --seed 1 --tick-rate 60 --settle 2 --duration 20 \
     --csv "$out/netbench-prediction.csv"
 }

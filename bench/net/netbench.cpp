@@ -182,7 +182,12 @@ int main(int argc, char** argv) {
   app.add_option("--prediction-scenes", prediction_scenes, "--prediction: scene files")
       ->capture_default_str()
       ->delimiter(',');
-  app.add_option("--prediction-bots", predicting.bots, "--prediction: bots of each client")
+  app.add_option("--prediction-bots", predicting.bots, "--prediction: players")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  app.add_option("--prediction-predicting-bots", predicting.predicting_bots,
+                 "--prediction: of the players, predicting bots in the predicting rows (the "
+                 "others thin); the thin rows' are all thin")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
   app.add_option("--prediction-one-way-ms", predicting.one_way_ms, "--prediction: one-way latency")

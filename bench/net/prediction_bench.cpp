@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
+#include <thread>
 
 #include "client/load.h"
 #include "physics_testing/in_process_server.h"
@@ -20,6 +23,23 @@ struct Row {
   client::LoadReport report;
 };
 
+client::LoadConfig bots_config(const PredictionBenchOptions& options, std::uint16_t port,
+                               bool predict, int bots) {
+  client::LoadConfig load;
+  load.client.port = port;
+  load.client.name = predict ? "netbench-predicting" : "netbench-thin";
+  // The predicting client is sent the world in its Welcome: about 300 bytes a body.
+  if (predict) load.client.max_message_bytes = std::size_t{64} << 20;
+  load.bots = bots;
+  load.predict = predict;
+  load.input_change_interval = std::chrono::milliseconds(options.input_change_ms);
+  load.settle = std::chrono::milliseconds(static_cast<long>(options.settle_seconds * 1000.0));
+  load.duration = std::chrono::milliseconds(static_cast<long>(options.seconds * 1000.0));
+  // Each predicting bot builds a world of thousands of bodies from its Welcome.
+  load.connect_timeout = 60s;
+  return load;
+}
+
 Row run_row(const PredictionBenchOptions& options, const PredictionScene& scene, bool predict) {
   server::ServerConfig config = physics_testing::test_server_config(false);
   config.tick_rate = options.tick_rate;
@@ -29,22 +49,19 @@ Row run_row(const PredictionBenchOptions& options, const PredictionScene& scene,
   path.seed = options.seed;
   physics_testing::LinkConditioner link(physics_testing::relay_to(server.port(), path));
 
-  client::LoadConfig load;
-  load.client.port = link.port();
-  load.client.name = predict ? "netbench-predicting" : "netbench-thin";
-  // The predicting client is sent the world in its Welcome: about 300 bytes a body.
-  if (predict) load.client.max_message_bytes = std::size_t{64} << 20;
-  load.bots = options.bots;
-  load.predict = predict;
-  load.input_change_interval = std::chrono::milliseconds(options.input_change_ms);
-  load.settle = std::chrono::milliseconds(static_cast<long>(options.settle_seconds * 1000.0));
-  load.duration = std::chrono::milliseconds(static_cast<long>(options.seconds * 1000.0));
-  // Each predicting bot builds a world of thousands of bodies from its Welcome.
-  load.connect_timeout = 60s;
   Row row;
   row.client = predict ? "predicting" : "thin";
   row.scene = scene.scene.name;
-  row.report = client::run_load(load);
+  const int measured = predict ? std::min(options.predicting_bots, options.bots) : options.bots;
+  // The other players, thin, in step with the measured ones.
+  std::optional<std::thread> others;
+  if (measured < options.bots) {
+    others.emplace([&] {
+      client::run_load(bots_config(options, link.port(), false, options.bots - measured));
+    });
+  }
+  row.report = client::run_load(bots_config(options, link.port(), predict, measured));
+  if (others) others->join();
   return row;
 }
 
@@ -103,10 +120,11 @@ int run_prediction_bench(const PredictionBenchOptions& options) {
                "desyncs,frames\n");
   }
   fmt::print(
-      "Thin and predicting clients, {} bots each changing input every {} ms, {} Hz fixed rate, "
-      "{} ms one way + 0-{} ms jitter (seed {}), {:.0f} s measured\n\n",
-      options.bots, options.input_change_ms, options.tick_rate, options.one_way_ms,
-      options.jitter_ms, options.seed, options.seconds);
+      "Thin and predicting clients, {} players each changing input every {} ms ({} of them "
+      "predicting in the predicting rows), {} Hz fixed rate, {} ms one way + 0-{} ms jitter "
+      "(seed {}), {:.0f} s measured\n\n",
+      options.bots, options.input_change_ms, std::min(options.predicting_bots, options.bots),
+      options.tick_rate, options.one_way_ms, options.jitter_ms, options.seed, options.seconds);
   fmt::print(
       "| client | scene | bots (joined) | own input shown median ms | p99 ms | rollbacks/s | "
       "ticks re-simulated/s | frame CPU median ms | p99 ms | largest correction m | after "

@@ -19,7 +19,8 @@ struct PredictionScene {
 
 struct PredictionBenchOptions {
   std::vector<PredictionScene> scenes;
-  int bots = 4;
+  int bots = 4;             // players
+  int predicting_bots = 1;  // of them, in the predicting row
   int one_way_ms = 50;
   int jitter_ms = 10;
   std::uint64_t seed = 1;
