@@ -11,6 +11,8 @@ expect_usage_error("--bots 0" "--bots" ${NETBENCH} --bots 0)
 expect_usage_error("--bots -3" "--bots" ${NETBENCH} --bots -3)
 expect_usage_error("--duration -1" "--duration" ${NETBENCH} --duration -1)
 expect_usage_error("--encodings zip" "--encodings" ${NETBENCH} --encodings zip)
+expect_usage_error("--prediction-bots 0" "--prediction-bots" ${NETBENCH} --prediction --prediction-bots 0)
+expect_usage_error("--input-change-ms -1" "--input-change-ms" ${NETBENCH} --input-change-ms -1)
 expect_usage_error("--scenes missing" "missing.textproto" ${NETBENCH} --scenes ${WORK}/missing.textproto)
 
 # One bot on the built-in scene for a fraction of a second: the row says it joined,
