@@ -27,9 +27,10 @@ struct LoadConfig {
   // Acceleration magnitude of the bots' circling pattern (m/s^2).
   double acceleration = 5.0;
   // How long each bot holds an input before it changes (0: a new one every tick, the
-  // circle swept in 120 ticks). Over a tick, each change turns the direction by 3/8
-  // of a circle, the bots' changes spread evenly over the interval. An input is sent
-  // every tick all the same, the held value repeated, as a player's client does.
+  // circle swept in 120 ticks). Longer than a tick: each change turns the direction
+  // by 3/8 of a circle, the bots' changes spread evenly over the interval. An input
+  // is sent every tick all the same, the held value repeated, as a player's client
+  // does.
   std::chrono::milliseconds input_change_interval{0};
   // Still bots send no inputs: they only watch (and acknowledge, and keep alive).
   bool still = false;
