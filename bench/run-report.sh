@@ -22,7 +22,7 @@ runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
       rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth vocabulary-cost
-      web-client)
+      web-client prediction rollback-budget)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -57,6 +57,8 @@ declare -A writes=(
   [relay-bandwidth]="netbench-relay.csv"
   [vocabulary-cost]="vocabulary-cost.csv"
   [web-client]="web-client.csv"
+  [prediction]="netbench-prediction.csv"
+  [rollback-budget]="rollback-budget.json"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
     netbench-pyramid-one-driver.csv"
@@ -113,8 +115,15 @@ if [[ -n "$only" ]]; then
   for r in ${only//,/ }; do [[ -v "writes[$r]" ]] || { echo "run-report: no run $r (--list)" >&2; exit 2; }; done
 fi
 wanted() { [[ -z "$only" || "$only" == *",$1,"* ]]; }
-[[ -x "$bench" ]] || { echo "run-report: $bench not built (ninja -C $build physics-bench)" >&2; exit 1; }
-command -v gnuplot >/dev/null || { echo "run-report: gnuplot not found (apt install gnuplot-nox)" >&2; exit 1; }
+# physics-bench and gnuplot are needed by the runs of physics-bench only.
+bench_runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
+            pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 rain-position-passes)
+needs_bench=0
+for r in "${bench_runs[@]}"; do wanted "$r" && needs_bench=1; done
+if [[ $needs_bench -eq 1 ]]; then
+  [[ -x "$bench" ]] || { echo "run-report: $bench not built (ninja -C $build physics-bench)" >&2; exit 1; }
+  command -v gnuplot >/dev/null || { echo "run-report: gnuplot not found (apt install gnuplot-nox)" >&2; exit 1; }
+fi
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 out="$results"
@@ -199,11 +208,29 @@ run_save-restore() {  # the world's saved state: save, restore, bytes (about a m
   "$micro" --benchmark_filter='SaveInto|Restore|ToBytes|FromBytes|StepForScale' \
     --benchmark_min_time=0.2 --benchmark_out="$out/save-restore.json" --benchmark_out_format=json
 }
-run_relay-bandwidth() {  # 8 players, the input relay beside the snapshot encodings (about 2 minutes)
+run_relay-bandwidth() {  # 8 players, the input relay beside the snapshot encodings (about 4 minutes)
   local netbench="$build/bench/physics-netbench"
   [[ -x "$netbench" ]] || { echo "run-report: $netbench not built" >&2; return 1; }
+  # Inputs changed every tick, and held for 500 ms as a player holds a key.
   "$netbench" --scenes scenes/moving-1000.textproto,scenes/large-4000.textproto --bots 8 \
-    --encodings inputs,predicted --duration 5 --warmup 1 --csv "$out/netbench-relay.csv"
+    --encodings inputs,predicted --input-change-ms 0,500 --duration 5 --warmup 1 \
+    --csv "$out/netbench-relay.csv"
+}
+run_prediction() {  # the thin and the predicting client through one 100 ms path (about 2 minutes)
+  local netbench="$build/bench/physics-netbench"
+  [[ -x "$netbench" ]] || { echo "run-report: $netbench not built" >&2; return 1; }
+  "$netbench" --prediction \
+    --prediction-scenes "$root/scenes/moving-1000.textproto,$root/scenes/large-4000.textproto" \
+    --prediction-bots 4 --prediction-predicting-bots 1 --prediction-one-way-ms 50 \
+    --prediction-jitter-ms 10 \
+    --prediction-input-change-ms 500 --seed 1 --tick-rate 60 --settle 2 --duration 20 \
+    --csv "$out/netbench-prediction.csv"
+}
+run_rollback-budget() {  # restore and 8 steps on rains and rained piles of 1,000 to 16,000 circles
+  local micro="$build/bench/physics-microbench"
+  [[ -x "$micro" ]] || { echo "run-report: $micro not built (ninja -C $build physics-microbench)" >&2; return 1; }
+  "$micro" --benchmark_filter='Rollback8' --benchmark_min_time=0.5 \
+    --benchmark_out="$out/rollback-budget.json" --benchmark_out_format=json
 }
 run_netbench() { BUILD_DIR="$build" "$here/run-netbench.sh"; }
 run_net-paths() {  # lockstep and fixed rate through the link conditioner (about 8 minutes)

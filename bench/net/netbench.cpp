@@ -18,6 +18,7 @@
 
 #include "client/load.h"
 #include "path_grid.h"
+#include "prediction_bench.h"
 #include "scene/scene.h"
 #include "server/server.h"
 
@@ -82,8 +83,9 @@ bool parse_encoding(const std::string& name, client::Encoding& out) {
 }  // namespace
 
 int run_all(const std::vector<std::string>& scene_files, const std::vector<int>& bot_counts,
-            const std::vector<std::string>& encodings, double duration, double warmup,
-            double settle, double tick_rate, bool still, const std::string& csv_path);
+            const std::vector<std::string>& encodings, const std::vector<int>& change_ms,
+            double duration, double warmup, double settle, double tick_rate, bool still,
+            const std::string& csv_path);
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -127,6 +129,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Number)
       ->check(CLI::Range(0.0, 1000.0));
   app.add_flag("--still", still, "Bots send no inputs: they watch (no latency figures)");
+  std::vector<int> change_ms{0};
+  app.add_option("--input-change-ms", change_ms,
+                 "Each bot holds its input this long before it changes, one run each (an input "
+                 "is still sent every tick; 0: a new one every tick)")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::Range(0, 600000));
   app.add_option("--csv", csv_path, "Also write the table as CSV to this file");
   // The path grid (docs/BENCHMARKS.md, "Over real paths").
   bool paths = false;
@@ -162,6 +171,38 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->delimiter(',')
       ->check(CLI::IsMember({"lockstep", "fixed"}));
+  // The predicting client beside the thin one (docs/BENCHMARKS.md, "The predicting client").
+  bool prediction = false;
+  netbench::PredictionBenchOptions predicting;
+  std::vector<std::string> prediction_scenes{"scenes/moving-1000.textproto",
+                                             "scenes/large-4000.textproto"};
+  app.add_flag("--prediction", prediction,
+               "Run the thin and the predicting client side by side instead: the same bots "
+               "through the same conditioned path, per scene");
+  app.add_option("--prediction-scenes", prediction_scenes, "--prediction: scene files")
+      ->capture_default_str()
+      ->delimiter(',');
+  app.add_option("--prediction-bots", predicting.bots, "--prediction: players")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  app.add_option("--prediction-predicting-bots", predicting.predicting_bots,
+                 "--prediction: of the players, predicting bots in the predicting rows (the "
+                 "others thin); the thin rows' are all thin")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
+  app.add_option("--prediction-one-way-ms", predicting.one_way_ms, "--prediction: one-way latency")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 2000));
+  app.add_option("--prediction-jitter-ms", predicting.jitter_ms,
+                 "--prediction: jitter (0 to this, per chunk)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--prediction-input-change-ms", predicting.input_change_ms,
+                 "--prediction: each bot holds its input this long")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 600000));
+  app.add_option("--seed", predicting.seed, "--prediction: the path's jitter seed")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -170,6 +211,21 @@ int main(int argc, char** argv) {
   }
   spdlog::set_level(spdlog::level::err);  // the table, not the server's log
   try {
+    if (prediction) {
+      for (const std::string& file : prediction_scenes) {
+        auto loaded = scene::load_scene_file(file);
+        if (auto* error = std::get_if<scene::SceneError>(&loaded)) {
+          fmt::print(stderr, "physics-netbench: {}\n", error->to_string());
+          return 2;
+        }
+        predicting.scenes.push_back({file, std::get<scene::SceneDef>(std::move(loaded))});
+      }
+      predicting.seconds = duration;
+      predicting.settle_seconds = settle > 0.0 ? settle : 1.0;
+      predicting.tick_rate = tick_rate > 0.0 ? tick_rate : 60.0;
+      predicting.csv_path = csv_path;
+      return netbench::run_prediction_bench(predicting);
+    }
     if (paths) {
       auto loaded = scene::load_scene_file(fixed_scene);
       if (auto* error = std::get_if<scene::SceneError>(&loaded)) {
@@ -186,8 +242,8 @@ int main(int argc, char** argv) {
       grid.fixed = std::find(modes.begin(), modes.end(), "fixed") != modes.end();
       return netbench::run_path_grid(grid);
     }
-    return run_all(scene_files, bot_counts, encodings, duration, warmup, settle, tick_rate, still,
-                   csv_path);
+    return run_all(scene_files, bot_counts, encodings, change_ms, duration, warmup, settle,
+                   tick_rate, still, csv_path);
   } catch (const std::invalid_argument& error) {
     // A setting the server refuses (a tick rate the scene cannot take, ...).
     fmt::print(stderr, "physics-netbench: {}\n", error.what());
@@ -199,8 +255,9 @@ int main(int argc, char** argv) {
 }
 
 int run_all(const std::vector<std::string>& scene_files, const std::vector<int>& bot_counts,
-            const std::vector<std::string>& encodings, double duration, double warmup,
-            double settle, double tick_rate, bool still, const std::string& csv_path) {
+            const std::vector<std::string>& encodings, const std::vector<int>& change_ms,
+            double duration, double warmup, double settle, double tick_rate, bool still,
+            const std::string& csv_path) {
   std::vector<Run> runs;
   for (const std::string& file : scene_files) {
     if (file == "default") {
@@ -225,90 +282,95 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
                "scene,encoding,still,clients_asked,clients_joined,kbit_per_s_per_client,"
                "bits_per_body_sent,bodies_per_snapshot,snapshots_per_s,worst_error_m,"
                "server_ms_per_tick_mean,server_ms_per_tick_p99,latency_median_ms,"
-               "latency_p99_ms,views\n");
+               "latency_p99_ms,views,input_change_ms\n");
   }
 
   fmt::print(
-      "| scene | encoding | clients (joined) | kbit/s per client | bits per body sent | bodies "
+      "| scene | encoding | input held ms | clients (joined) | kbit/s per client | bits per body "
+      "sent | bodies "
       "per snapshot | snapshots/s | worst error m | server ms/tick mean | p99 | input->snapshot "
       "median ms | p99 ms |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Run& run : runs) {
     for (const std::string& encoding_name : encodings) {
       client::Encoding encoding{};
       parse_encoding(encoding_name, encoding);
       for (const int bots : bot_counts) {
-        server::ServerConfig config;
-        config.port = 0;
-        config.tick_rate = tick_rate;
-        config.max_clients = std::max(64, bots + 1);
-        config.max_players_per_address = 0;  // every bot connects from 127.0.0.1
-        server::Server server(config, run.scene);
-        std::thread server_thread([&] { server.run(); });
-        if (warmup > 0.0) {
-          std::this_thread::sleep_for(
-              std::chrono::milliseconds(static_cast<long>(warmup * 1000.0)));
-        }
+        for (const int held_ms : change_ms) {
+          server::ServerConfig config;
+          config.port = 0;
+          config.tick_rate = tick_rate;
+          config.max_clients = std::max(64, bots + 1);
+          config.max_players_per_address = 0;  // every bot connects from 127.0.0.1
+          server::Server server(config, run.scene);
+          std::thread server_thread([&] { server.run(); });
+          if (warmup > 0.0) {
+            std::this_thread::sleep_for(
+                std::chrono::milliseconds(static_cast<long>(warmup * 1000.0)));
+          }
 
-        client::LoadConfig load;
-        load.client.port = server.port();
-        load.client.name = "netbench";
-        load.client.view.encoding = encoding;
-        load.client.want_world = encoding == client::Encoding::Inputs;
-        // The world's state in the Welcome: about 300 bytes a body.
-        if (load.client.want_world) load.client.max_message_bytes = std::size_t{64} << 20;
-        load.bots = bots;
-        load.still = still;
-        load.settle = std::chrono::milliseconds(static_cast<long>(settle * 1000.0));
-        load.duration = std::chrono::milliseconds(static_cast<long>(duration * 1000.0));
-        std::atomic<bool> done{false};
-        client::LoadReport report;
-        std::thread load_thread([&] {
-          report = client::run_load(load);
-          done = true;
-        });
-        const TickSamples ticks = sample_ticks(server, done);
-        const server::ServerStats stats = server.stats();
-        load_thread.join();
-        server.stop();
-        server_thread.join();
+          client::LoadConfig load;
+          load.client.port = server.port();
+          load.client.name = "netbench";
+          load.client.view.encoding = encoding;
+          load.client.want_world = encoding == client::Encoding::Inputs;
+          // The world's state in the Welcome: about 300 bytes a body.
+          if (load.client.want_world) load.client.max_message_bytes = std::size_t{64} << 20;
+          load.bots = bots;
+          load.still = still;
+          load.input_change_interval = std::chrono::milliseconds(held_ms);
+          load.settle = std::chrono::milliseconds(static_cast<long>(settle * 1000.0));
+          load.duration = std::chrono::milliseconds(static_cast<long>(duration * 1000.0));
+          std::atomic<bool> done{false};
+          client::LoadReport report;
+          std::thread load_thread([&] {
+            report = client::run_load(load);
+            done = true;
+          });
+          const TickSamples ticks = sample_ticks(server, done);
+          const server::ServerStats stats = server.stats();
+          load_thread.join();
+          server.stop();
+          server_thread.join();
 
-        const double mean_ms = 1000.0 * ticks.mean_seconds;
-        const double p99_ms = 1000.0 * client::quantile(ticks.seconds, 0.99);
-        const double kbit = 8.0 * report.bytes_per_second_mean / 1000.0;
-        const double bits_per_body = report.records > 0 ? 8.0 * static_cast<double>(report.bytes) /
-                                                              static_cast<double>(report.records)
-                                                        : 0.0;
-        const double bodies_per_snapshot =
-            report.snapshots > 0
-                ? static_cast<double>(report.records) / static_cast<double>(report.snapshots)
-                : 0.0;
-        fmt::print(
-            "| {} | {} | {} ({}) | {:.1f} | {} | {:.1f} | {:.1f} | {:.4f} | {:.3f} | "
-            "{:.3f} | {} | {} |\n",
-            run.scene.name, encoding_name, bots, report.bots_connected, kbit,
-            // No body sent in the run: no bits per body to speak of.
-            report.records > 0 ? fmt::format("{:.1f}", bits_per_body) : std::string("-"),
-            bodies_per_snapshot, report.snapshots_per_second_mean, stats.max_view_error, mean_ms,
-            p99_ms, still ? std::string("-") : fmt::format("{:.2f}", report.latency_median_ms),
-            still ? std::string("-") : fmt::format("{:.2f}", report.latency_p99_ms));
-        if (csv != nullptr) {
+          const double mean_ms = 1000.0 * ticks.mean_seconds;
+          const double p99_ms = 1000.0 * client::quantile(ticks.seconds, 0.99);
+          const double kbit = 8.0 * report.bytes_per_second_mean / 1000.0;
+          const double bits_per_body =
+              report.records > 0
+                  ? 8.0 * static_cast<double>(report.bytes) / static_cast<double>(report.records)
+                  : 0.0;
+          const double bodies_per_snapshot =
+              report.snapshots > 0
+                  ? static_cast<double>(report.records) / static_cast<double>(report.snapshots)
+                  : 0.0;
           fmt::print(
-              csv,
-              "{},{},{},{},{},{:.3f},{:.2f},{:.3f},{:.2f},{:.6f},{:.4f},{:.4f},{:.3f},{:.3f},{}\n",
-              run.scene.name, encoding_name, still ? 1 : 0, bots, report.bots_connected, kbit,
-              bits_per_body, bodies_per_snapshot, report.snapshots_per_second_mean,
-              stats.max_view_error, mean_ms, p99_ms, report.latency_median_ms,
-              report.latency_p99_ms, stats.views);
+              "| {} | {} | {} | {} ({}) | {:.1f} | {} | {:.1f} | {:.1f} | {:.4f} | {:.3f} | "
+              "{:.3f} | {} | {} |\n",
+              run.scene.name, encoding_name, held_ms, bots, report.bots_connected, kbit,
+              // No body sent in the run: no bits per body to speak of.
+              report.records > 0 ? fmt::format("{:.1f}", bits_per_body) : std::string("-"),
+              bodies_per_snapshot, report.snapshots_per_second_mean, stats.max_view_error, mean_ms,
+              p99_ms, still ? std::string("-") : fmt::format("{:.2f}", report.latency_median_ms),
+              still ? std::string("-") : fmt::format("{:.2f}", report.latency_p99_ms));
+          if (csv != nullptr) {
+            fmt::print(csv,
+                       "{},{},{},{},{},{:.3f},{:.2f},{:.3f},{:.2f},{:.6f},{:.4f},{:.4f},{:.3f},{:."
+                       "3f},{},{}\n",
+                       run.scene.name, encoding_name, still ? 1 : 0, bots, report.bots_connected,
+                       kbit, bits_per_body, bodies_per_snapshot, report.snapshots_per_second_mean,
+                       stats.max_view_error, mean_ms, p99_ms, report.latency_median_ms,
+                       report.latency_p99_ms, stats.views, held_ms);
+          }
+          std::fflush(stdout);
+          fmt::print(stderr,
+                     "  {} {} bots: {} connected, {} tick samples of {} ticks, {} latency samples, "
+                     "dropped steps {}, skipped snapshots {}, late inputs {}, views {}\n",
+                     encoding_name, bots, report.bots_connected, ticks.seconds.size(), ticks.ticks,
+                     report.latency_samples, ticks.dropped_steps, ticks.dropped_snapshots,
+                     ticks.late_inputs, stats.views);
+          for (const auto& failure : report.failures) fmt::print(stderr, "  {}\n", failure);
         }
-        std::fflush(stdout);
-        fmt::print(stderr,
-                   "  {} {} bots: {} connected, {} tick samples of {} ticks, {} latency samples, "
-                   "dropped steps {}, skipped snapshots {}, late inputs {}, views {}\n",
-                   encoding_name, bots, report.bots_connected, ticks.seconds.size(), ticks.ticks,
-                   report.latency_samples, ticks.dropped_steps, ticks.dropped_snapshots,
-                   ticks.late_inputs, stats.views);
-        for (const auto& failure : report.failures) fmt::print(stderr, "  {}\n", failure);
       }
     }
   }

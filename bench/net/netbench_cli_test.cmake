@@ -11,10 +11,12 @@ expect_usage_error("--bots 0" "--bots" ${NETBENCH} --bots 0)
 expect_usage_error("--bots -3" "--bots" ${NETBENCH} --bots -3)
 expect_usage_error("--duration -1" "--duration" ${NETBENCH} --duration -1)
 expect_usage_error("--encodings zip" "--encodings" ${NETBENCH} --encodings zip)
+expect_usage_error("--prediction-bots 0" "--prediction-bots" ${NETBENCH} --prediction --prediction-bots 0)
+expect_usage_error("--input-change-ms -1" "--input-change-ms" ${NETBENCH} --input-change-ms -1)
 expect_usage_error("--scenes missing" "missing.textproto" ${NETBENCH} --scenes ${WORK}/missing.textproto)
 
-# One bot on the built-in scene for a fraction of a second: the row says it joined,
-# and the CSV has the header and that row.
+# One bot on the built-in scene for a fraction of a second (inputs not held: 0): the
+# row says it joined, and the CSV has the header and that row.
 set(csv ${WORK}/netbench-cli.csv)
 file(REMOVE ${csv})
 execute_process(COMMAND ${NETBENCH} --bots 1 --duration 0.3 --encodings full --csv ${csv}
@@ -22,7 +24,7 @@ execute_process(COMMAND ${NETBENCH} --bots 1 --duration 0.3 --encodings full --c
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "physics-netbench --bots 1 failed (${rc}):\n${out}${err}")
 endif()
-if(NOT out MATCHES "\\| [^|]+ \\| full \\| 1 \\(1\\) \\|")
+if(NOT out MATCHES "\\| [^|]+ \\| full \\| 0 \\| 1 \\(1\\) \\|")
   message(FATAL_ERROR "physics-netbench: no row of one joined bot:\n${out}${err}")
 endif()
 file(STRINGS ${csv} rows)

@@ -246,7 +246,8 @@ void print_row(const Row& r, double tick_rate, std::FILE* csv) {
         r.path.stall_ms > 0 ? fmt::format("{}/{}", r.path.stall_ms, r.path.stall_every_ms) : "-",
         r.snapshots_per_second, r.latency_median_ms, r.latency_p99_ms, r.age_median_ms,
         r.age_p99_ms, r.kbit_per_second, r.skipped,
-        r.behaviour == Behaviour::OnClock ? fmt::format("{:.1f}", r.delay_median) : std::string("-"));
+        r.behaviour == Behaviour::OnClock ? fmt::format("{:.1f}", r.delay_median)
+                                          : std::string("-"));
   }
   if (!r.note.empty()) fmt::print(stderr, "  note: {}\n", r.note);
   if (csv != nullptr) {

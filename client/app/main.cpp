@@ -38,6 +38,7 @@ struct Options {
   client::PredictionConfig prediction;
   double duration_seconds = 5.0;
   int connect_timeout_ms = 5000;
+  int input_change_ms = 0;
 };
 
 int run_single(const Options& options) {
@@ -103,6 +104,7 @@ int run_bots(const Options& options) {
   load.duration = std::chrono::milliseconds(static_cast<long>(options.duration_seconds * 1000.0));
   load.connect_timeout = std::chrono::milliseconds(options.connect_timeout_ms);
   load.pacer = options.pacer;
+  load.input_change_interval = std::chrono::milliseconds(options.input_change_ms);
   load.predict = options.predict;
   load.prediction = options.prediction;
   const client::LoadReport report = client::run_load(load);
@@ -151,6 +153,12 @@ int main(int argc, char** argv) {
                  "tick, the deepest rollback")
       ->capture_default_str()
       ->check(CLI::Range(0, 600));
+  app.add_option("--input-change-ms", options.input_change_ms,
+                 "Load mode: each bot holds its input this long before it changes (an input "
+                 "is still sent every tick; 0: a new one every tick)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 600000))
+      ->needs("--bots");
   app.add_option("--duration", options.duration_seconds, "Load mode: seconds to measure")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();

@@ -74,6 +74,7 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         "\"own_input_visible_ms_p99\":{:.3f},\"rollbacks_per_second\":{:.2f},"
         "\"resimulated_ticks_per_second\":{:.2f},\"largest_correction_m\":{:.6f},"
         "\"largest_smoothed_correction_m\":{:.6f},\"desyncs\":{},\"resyncs\":{},"
+        "\"frame_cpu_ms_median\":{:.3f},\"frame_cpu_ms_p99\":{:.3f},\"frames\":{},"
         "\"bytes_per_second\":{:.0f}}}",
         report.bots_requested, report.bots_connected, report.seconds, report.latency_samples,
         report.latency_median_ms, report.latency_p99_ms, report.latency_max_ms,
@@ -85,7 +86,8 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         report.predicting, report.own_input_visible_ms_median, report.own_input_visible_ms_p99,
         report.rollbacks_per_second, report.resimulated_ticks_per_second,
         report.largest_correction_m, report.largest_smoothed_correction_m, report.desyncs,
-        report.resyncs, report.bytes_per_second_mean);
+        report.resyncs, report.frame_cpu_ms_median, report.frame_cpu_ms_p99, report.frames,
+        report.bytes_per_second_mean);
   }
   std::string text = fmt::format(
       "bots {} (connected {}) over {:.2f} s\n"
@@ -106,10 +108,11 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
   if (report.predicting) {
     text += fmt::format(
         "\nprediction: {:.2f} rollbacks/s, {:.2f} ticks stepped again/s, largest correction "
-        "{:.6f} m ({:.6f} m a tick after smoothing), desyncs {}, full states {}",
+        "{:.6f} m ({:.6f} m a tick after smoothing), desyncs {}, full states {}\n"
+        "CPU per rendered frame: median {:.3f} ms, p99 {:.3f} ms ({} frames)",
         report.rollbacks_per_second, report.resimulated_ticks_per_second,
         report.largest_correction_m, report.largest_smoothed_correction_m, report.desyncs,
-        report.resyncs);
+        report.resyncs, report.frame_cpu_ms_median, report.frame_cpu_ms_p99, report.frames);
   }
   for (const auto& failure : report.failures) text += "\n" + failure;
   return text;

@@ -1,6 +1,7 @@
 // physics-view: watches a physics-server as a spectator and draws every body,
 // interpolated through the client library's playout buffer, or plays a client
-// recording again (docs/VIEWER.md).
+// recording again, or joins as a player and draws what the predicting client
+// shows (docs/VIEWER.md).
 #include <SDL.h>
 
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "live_world.h"
 #include "options.h"
 #include "png.h"
+#include "predicted_world.h"
 #include "replay_world.h"
 #include "window.h"
 
@@ -109,6 +111,42 @@ int run_live_window(const ViewerOptions& options) {
   return code;
 }
 
+int run_predicted(const ViewerOptions& options) {
+  viewer::PredictedWorld world(options.client);
+  if (!world.connect(std::chrono::milliseconds(options.connect_timeout_ms))) {
+    std::fprintf(stderr, "physics-view: cannot join: %s\n", world.error().c_str());
+    return viewer::kExitFailure;
+  }
+  if (options.screenshot.empty()) {
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) {
+      std::fprintf(stderr, "physics-view: cannot open a window: %s\n", SDL_GetError());
+      return viewer::kExitFailure;
+    }
+    const int code = viewer::run_window(options, world, steady_seconds);
+    SDL_Quit();
+    return code;
+  }
+  // The picture shows the prediction once it stands this many ticks past the Welcome.
+  const std::uint64_t target = world.client().welcome().current_tick + options.after_ticks;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(options.screenshot_timeout_ms);
+  while (world.client().core().predicted_tick() < target) {
+    if (!world.connected()) {
+      std::fprintf(stderr, "physics-view: the session ended before tick %llu: %s\n",
+                   static_cast<unsigned long long>(target), world.error().c_str());
+      return viewer::kExitFailure;
+    }
+    if (std::chrono::steady_clock::now() >= deadline) {
+      std::fprintf(stderr, "physics-view: no prediction of tick %llu within %d ms\n",
+                   static_cast<unsigned long long>(target), options.screenshot_timeout_ms);
+      return viewer::kExitFailure;
+    }
+    world.pump(std::chrono::steady_clock::now() + std::chrono::milliseconds(100));
+  }
+  const client::PlayoutFrame& frame = world.frame();
+  return write_screenshot(options, world, frame, world.client().core().predicted_tick(), 0.0);
+}
+
 int run_replay(const ViewerOptions& options) {
   auto read = client::read_client_recording(options.replay);
   if (const auto* error = std::get_if<std::string>(&read)) {
@@ -145,5 +183,6 @@ int main(int argc, char** argv) {
   ViewerOptions options;
   if (const auto exit_code = viewer::parse_options(argc, argv, options)) return *exit_code;
   if (!options.replay.empty()) return run_replay(options);
+  if (options.predict) return run_predicted(options);
   return options.screenshot.empty() ? run_live_window(options) : run_live_screenshot(options);
 }

@@ -92,6 +92,10 @@ std::optional<int> parse_options(int argc, char** argv, ViewerOptions& options) 
                                 "Play a client recording (physics-view or physics-client "
                                 "--record) instead of joining a server")
                      ->check(CLI::ExistingFile);
+  app.add_flag("--predict", options.predict,
+               "Join as a player and draw what the predicting client shows it (the input "
+               "relay, the world run here; client/predicting_client.h) instead of watching")
+      ->excludes(replay);
   app.add_option("--speed", options.speed, "With --replay: playback speed, in [1/64, 64]")
       ->capture_default_str()
       ->check(check_finite)

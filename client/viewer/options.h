@@ -27,6 +27,9 @@ struct ViewerOptions {
   int screenshot_timeout_ms = 30000;  // waiting for the tick, at most
   std::string replay;                 // a client recording to play instead of joining a server
   double speed = 1.0;                 // with --replay: the playback speed
+  // Join as a player and draw the predicting client's render state (its own input
+  // shown at once, the others predicted, corrections smoothed).
+  bool predict = false;
 };
 
 // Parses argv. On --help or a bad flag returns the exit code (0 or kExitUsage)

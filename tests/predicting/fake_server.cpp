@@ -8,6 +8,7 @@ namespace predicting_test {
 FakeServer::FakeServer(int players, std::uint32_t hash_interval)
     : world_(scene::build_world(scene::default_scene())),
       tick_rate_(scene::default_scene().tick_rate),
+      max_acceleration_(scene::default_scene().max_acceleration),
       dt_(scene::fixed_dt(scene::default_scene())),
       hash_interval_(hash_interval),
       player_(scene::default_scene().player) {
@@ -28,7 +29,8 @@ phys::BodyDef FakeServer::player_def(double x) const {
 }
 
 void FakeServer::input(std::uint64_t body, std::uint64_t tick, client::Vec2 a) {
-  inputs_[body][tick] = a;
+  const phys::Vec2 clamped = phys::clamp_length({a.x, a.y}, max_acceleration_);
+  inputs_[body][tick] = {clamped.x, clamped.y};
 }
 
 std::uint64_t FakeServer::join_next_tick(const phys::BodyDef& def) {

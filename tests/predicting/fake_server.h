@@ -23,6 +23,8 @@ class FakeServer {
 
   std::uint64_t tick() const { return tick_; }
   double tick_rate() const { return tick_rate_; }
+  // The scene's input limit: inputs are clamped to it, as the server's input check does.
+  double max_acceleration() const { return max_acceleration_; }
   std::uint64_t player(int index) const { return players_.at(static_cast<std::size_t>(index)); }
   const phys::World& world() const { return world_; }
   // A copy of the world now (what Welcome.world_state carries).
@@ -30,7 +32,8 @@ class FakeServer {
   // The state hash after each tick stepped.
   const std::map<std::uint64_t, std::uint64_t>& hashes() const { return hashes_; }
 
-  // The acceleration `body` gets from `tick` on (held), as a client's Input.
+  // The acceleration `body` gets from `tick` on (held), as a client's Input: clamped
+  // to max_acceleration().
   void input(std::uint64_t body, std::uint64_t tick, client::Vec2 a);
   // A body added, or removed, before the inputs of the next tick stepped.
   std::uint64_t join_next_tick(const phys::BodyDef& def);
@@ -43,6 +46,7 @@ class FakeServer {
  private:
   phys::World world_;
   double tick_rate_ = 60.0;
+  double max_acceleration_ = 0.0;
   double dt_ = 0.0;
   std::uint32_t hash_interval_ = 1;
   std::uint64_t tick_ = 0;

@@ -109,6 +109,28 @@ TEST(Rollback, OwnInputAppliedLaterThanPredictedRollsBack) {
   EXPECT_EQ(loop.core.confirmed_hash(), loop.server.hashes().at(loop.core.confirmed_tick()));
 }
 
+TEST(Rollback, OwnInputOverTheLimitIsPredictedAsTheServerClampsIt) {
+  PredictionLoop loop;
+  const double limit = loop.server.max_acceleration();
+  ASSERT_GT(limit, 0.0);
+  // Over the scene's limit, off the axes (where clamping rounds), changed every 20
+  // ticks: the server applies and relays each clamped; the prediction must too.
+  const auto over = [&](std::uint64_t tick) {
+    const double k = static_cast<double>(tick / 20 % 3 + 2);
+    return client::Vec2{k * limit, -0.7 * k * limit};
+  };
+  for (int i = 0; i < 120; ++i) loop.round(over);
+  const client::PredictionStats& stats = loop.core.stats();
+  EXPECT_GT(stats.confirmed_ticks, 100u);
+  EXPECT_EQ(stats.rollbacks, 0u);
+  EXPECT_EQ(stats.matched_ticks, stats.confirmed_ticks);
+  EXPECT_EQ(stats.desyncs, 0u);
+  const auto own = loop.core.predicted_world().body(phys::BodyId::from_packed(loop.own()));
+  ASSERT_TRUE(own);
+  EXPECT_LE(phys::length(own->acceleration), limit);
+  EXPECT_GT(phys::length(own->acceleration), 0.99 * limit);
+}
+
 TEST(Rollback, TheBarrierStopsThePredictionAtMaxRollbackTicksPastTheConfirmed) {
   client::PredictionConfig config;
   config.max_rollback = 10;

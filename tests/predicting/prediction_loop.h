@@ -18,7 +18,7 @@ struct PredictionLoop {
   explicit PredictionLoop(std::uint32_t lead_ticks = 6, std::uint32_t latency_rounds = 4,
                           std::uint32_t hash_interval = 1, client::PredictionConfig config = {})
       : server(2, hash_interval), core(config), lead(lead_ticks), latency(latency_rounds) {
-    core.start(server.copy(), server.tick(), own(), server.tick_rate());
+    core.start(server.copy(), server.tick(), own(), server.tick_rate(), server.max_acceleration());
   }
 
   std::uint64_t own() const { return server.player(0); }

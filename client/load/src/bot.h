@@ -36,6 +36,7 @@ struct BotResult {
   std::uint64_t resimulated = 0;
   double largest_correction = 0.0;
   double largest_smoothed_correction = 0.0;
+  std::vector<double> frame_cpu_ms;
   std::uint64_t desyncs = 0;
   std::uint64_t resyncs = 0;
 };
@@ -45,9 +46,13 @@ struct PendingInput {
   Clock::time_point sent_at;
 };
 
-// The acceleration of bot `index` of `bots` at `tick`: a circle, each bot at its
-// own phase so that they do not all push the same way.
-Vec2 bot_acceleration(const LoadConfig& config, int index, std::uint64_t tick);
+// The acceleration of bot `index` of `bots` at `tick` of a server at `tick_rate`: a
+// circle, each bot at its own phase so that they do not all push the same way, held
+// for config.input_change_interval when it is set.
+Vec2 bot_acceleration(const LoadConfig& config, int index, std::uint64_t tick, double tick_rate);
+
+// This thread's CPU time so far (CLOCK_THREAD_CPUTIME_ID), in ms.
+double thread_cpu_ms();
 
 // One bot: connects, waits at `start` for the others, then sends an input every
 // tick until the measurement ends.

@@ -1,5 +1,7 @@
 #include "client/load.h"
 
+#include <time.h>
+
 #include <algorithm>
 #include <barrier>
 #include <cmath>
@@ -11,11 +13,29 @@
 
 namespace client {
 
-Vec2 bot_acceleration(const LoadConfig& config, int index, std::uint64_t tick) {
+Vec2 bot_acceleration(const LoadConfig& config, int index, std::uint64_t tick, double tick_rate) {
   if (config.still) return {0.0, 0.0};
-  const double phase = 2.0 * M_PI * index / std::max(1, config.bots);
-  const double angle = phase + 2.0 * M_PI * static_cast<double>(tick % 120) / 120.0;
+  const int bots = std::max(1, config.bots);
+  const double phase = 2.0 * M_PI * index / bots;
+  const auto hold = static_cast<std::uint64_t>(
+      std::llround(std::chrono::duration<double>(config.input_change_interval).count() *
+                   std::max(0.0, tick_rate)));
+  double turns = static_cast<double>(tick % 120) / 120.0;
+  if (hold > 1) {
+    // The k-th change of this bot; bot i changes i/bots of an interval after bot 0.
+    const std::uint64_t offset =
+        hold * static_cast<std::uint64_t>(index) / static_cast<std::uint64_t>(bots);
+    const std::uint64_t k = (tick + offset) / hold;
+    turns = static_cast<double>(k % 8) * 3.0 / 8.0;
+  }
+  const double angle = phase + 2.0 * M_PI * turns;
   return {config.acceleration * std::cos(angle), config.acceleration * std::sin(angle)};
+}
+
+double thread_cpu_ms() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1000.0 + static_cast<double>(now.tv_nsec) / 1.0e6;
 }
 
 void run_thin_bot(const LoadConfig& config, int index, std::barrier<>& start, BotResult& result) {
@@ -36,7 +56,7 @@ void run_thin_bot(const LoadConfig& config, int index, std::barrier<>& start, Bo
       pending.push_back({tick, Clock::now()});
       ++result.inputs;
     }
-    return bot_acceleration(config, index, tick);
+    return bot_acceleration(config, index, tick, bot.welcome().tick_rate);
   };
   // A still bot only watches (at a fixed rate it sends nothing; in lockstep, where
   // every tick waits for it, it sends zeros).
@@ -140,6 +160,7 @@ LoadReport run_load(const LoadConfig& config) {
   std::vector<double> delays;
   std::vector<double> ages;
   std::vector<double> visible;
+  std::vector<double> frame_cpu;
   double rollback_rate_sum = 0.0;
   double resimulated_rate_sum = 0.0;
   double snapshot_rate_sum = 0.0;
@@ -154,6 +175,7 @@ LoadReport run_load(const LoadConfig& config) {
     ++report.bots_connected;
     latencies.insert(latencies.end(), result.latencies_ms.begin(), result.latencies_ms.end());
     visible.insert(visible.end(), result.visible_ms.begin(), result.visible_ms.end());
+    frame_cpu.insert(frame_cpu.end(), result.frame_cpu_ms.begin(), result.frame_cpu_ms.end());
     report.largest_correction_m = std::max(report.largest_correction_m, result.largest_correction);
     report.largest_smoothed_correction_m =
         std::max(report.largest_smoothed_correction_m, result.largest_smoothed_correction);
@@ -190,6 +212,9 @@ LoadReport run_load(const LoadConfig& config) {
   report.predicting = config.predict;
   report.own_input_visible_ms_median = quantile(visible, 0.5);
   report.own_input_visible_ms_p99 = quantile(visible, 0.99);
+  report.frames = frame_cpu.size();
+  report.frame_cpu_ms_median = quantile(frame_cpu, 0.5);
+  report.frame_cpu_ms_p99 = quantile(frame_cpu, 0.99);
   report.snapshot_age_median_ms = quantile(ages, 0.5);
   report.snapshot_age_p99_ms = quantile(ages, 0.99);
   if (report.bots_connected > 0) {

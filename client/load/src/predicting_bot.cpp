@@ -1,5 +1,7 @@
 // A bot that predicts: a PredictingClient sending the same circling inputs as the
-// thin bot, measuring how soon each input is shown, and what the rollbacks cost.
+// thin bot, measuring how soon each input is shown, and what the rollbacks cost:
+// their number, and the CPU time of each rendered frame.
+#include <algorithm>
 #include <deque>
 #include <optional>
 
@@ -30,7 +32,7 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
       confirmed.push_back(shown.back());
       ++result.inputs;
     }
-    return bot_acceleration(config, index, tick);
+    return bot_acceleration(config, index, tick, bot.welcome().tick_rate);
   };
 
   for (const auto settled = Clock::now() + config.settle; Clock::now() < settled;) {
@@ -44,14 +46,30 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
   std::uint64_t last_tick = 0;
   Clock::time_point first_at{};
   Clock::time_point last_at{};
+  // A frame is drawn every tick period, as a game draws at its display's rate: its
+  // CPU time is everything this thread did since the previous frame (the polls'
+  // reads and decoding, the prediction, the rollbacks) and the render state.
+  const auto frame_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(1.0 / bot.welcome().tick_rate));
+  auto next_frame = begin + frame_period;
+  double frame_cpu_start = thread_cpu_ms();
   while (Clock::now() < end) {
-    const PollResult polled = bot.poll(end, input);
+    const PollResult polled = bot.poll(std::min(end, next_frame), input);
     if (polled == PollResult::Ended) {
       result.failure = bot.error();
       break;
     }
     // The state shown now is the prediction at predicted_tick().
     const auto now = Clock::now();
+    if (now >= next_frame) {
+      [[maybe_unused]] const RenderState drawn = bot.render();
+      const double cpu = thread_cpu_ms();
+      result.frame_cpu_ms.push_back(cpu - frame_cpu_start);
+      frame_cpu_start = cpu;
+      // A frame late by more than a period is not drawn twice to catch up.
+      next_frame += frame_period;
+      if (next_frame <= now) next_frame = now + frame_period;
+    }
     const std::uint64_t predicted = bot.core().predicted_tick();
     while (!shown.empty() && predicted >= shown.front().tick) {
       result.visible_ms.push_back(

@@ -33,8 +33,9 @@ constexpr double kNegligibleCorrection = 1e-9;
 PredictionCore::PredictionCore(PredictionConfig config) : config_(config) {}
 
 void PredictionCore::start(phys::World world, std::uint64_t tick, std::uint64_t own_body,
-                           double tick_rate) {
+                           double tick_rate, double max_acceleration) {
   dt_ = 1.0 / tick_rate;  // as the server's step: bit for bit the same dt
+  max_acceleration_ = max_acceleration > 0.0 ? max_acceleration : 0.0;
   decay_per_tick_ =
       config_.smoothing_time_constant > 0.0 ? std::exp(-dt_ / config_.smoothing_time_constant) : 0;
   own_ = own_body;
@@ -74,7 +75,10 @@ PredictionCore::Slot& PredictionCore::slot(std::uint64_t tick) {
 }
 
 void PredictionCore::set_input(std::uint64_t tick, Vec2 acceleration) {
-  inputs_[tick] = to_phys(acceleration);
+  // The server's input check (server/src/input_buffer.cpp) clamps with the same
+  // function and limit, so the clamped value is bit for bit the one it relays.
+  const phys::Vec2 a = to_phys(acceleration);
+  inputs_[tick] = max_acceleration_ > 0.0 ? phys::clamp_length(a, max_acceleration_) : a;
 }
 
 std::optional<phys::Vec2> PredictionCore::own_input_at(std::uint64_t tick) const {
@@ -151,8 +155,7 @@ void PredictionCore::on_snapshot(const Snapshot& snapshot) {
 
 bool PredictionCore::matches(const physics::wire::RelayTick& relay) const {
   // Bodies added or removed, or the game's rules at work: nothing predicted them.
-  if (relay.changes_size() != 0 || relay.before_step_size() != 0 ||
-      relay.after_step_size() != 0) {
+  if (relay.changes_size() != 0 || relay.before_step_size() != 0 || relay.after_step_size() != 0) {
     return false;
   }
   const Slot& predicted = ring_[static_cast<std::size_t>(relay.tick() % ring_.size())];

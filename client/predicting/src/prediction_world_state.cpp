@@ -21,7 +21,7 @@ bool PredictionCore::start(const Welcome& welcome) {
     return false;
   }
   start(std::move(*world), welcome.current_tick, welcome.spectator ? 0 : welcome.body_id,
-        welcome.tick_rate);
+        welcome.tick_rate, welcome.max_acceleration);
   return true;
 }
 

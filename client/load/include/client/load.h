@@ -26,6 +26,12 @@ struct LoadConfig {
   PacerConfig pacer;
   // Acceleration magnitude of the bots' circling pattern (m/s^2).
   double acceleration = 5.0;
+  // How long each bot holds an input before it changes (0: a new one every tick, the
+  // circle swept in 120 ticks). Longer than a tick: each change turns the direction
+  // by 3/8 of a circle, the bots' changes spread evenly over the interval. An input
+  // is sent every tick all the same, the held value repeated, as a player's client
+  // does.
+  std::chrono::milliseconds input_change_interval{0};
   // Still bots send no inputs: they only watch (and acknowledge, and keep alive).
   bool still = false;
   // Snapshots taken for this long after connecting, before the measurement starts
@@ -89,6 +95,12 @@ struct LoadReport {
   double resimulated_ticks_per_second = 0.0;
   double largest_correction_m = 0.0;
   double largest_smoothed_correction_m = 0.0;
+  // The predicting client's CPU time per rendered frame (a frame each tick period:
+  // the client's polls, its prediction and rollbacks, and render()), on the bot's
+  // thread clock (CLOCK_THREAD_CPUTIME_ID), over all bots' frames.
+  std::size_t frames = 0;
+  double frame_cpu_ms_median = 0.0;
+  double frame_cpu_ms_p99 = 0.0;
   std::uint64_t desyncs = 0;
   std::uint64_t resyncs = 0;
 };

@@ -105,11 +105,16 @@ class PredictionCore {
   // error() says why, when the bytes are not a world.
   bool start(const Welcome& welcome);
   // Starts from a world after `tick` (tests; a world built without bytes).
-  // own_body 0: no body of our own (a spectator).
-  void start(phys::World world, std::uint64_t tick, std::uint64_t own_body, double tick_rate);
+  // own_body 0: no body of our own (a spectator). max_acceleration: the scene's
+  // input limit (Welcome::max_acceleration); 0, none.
+  void start(phys::World world, std::uint64_t tick, std::uint64_t own_body, double tick_rate,
+             double max_acceleration = 0.0);
 
   // The own body's acceleration from `tick` on (held until the next), as sent to
-  // the server. Inputs for ticks at or before the confirmed one change nothing.
+  // the server, clamped to the scene's max_acceleration as the server's input check
+  // clamps it (phys::clamp_length): an input over the limit is predicted as the
+  // server applies it, so its confirmation matches. Inputs for ticks at or before
+  // the confirmed one change nothing.
   void set_input(std::uint64_t tick, Vec2 acceleration);
   // Takes a snapshot's world state (a full state answered) and relayed ticks.
   void on_snapshot(const Snapshot& snapshot);
@@ -181,6 +186,7 @@ class PredictionCore {
   bool failed_ = false;
   std::string error_;
   double dt_ = 0.0;
+  double max_acceleration_ = 0.0;  // the server's input limit; 0: none
   double decay_per_tick_ = 0.0;
   std::uint64_t own_ = 0;
   phys::World world_;           // at world_tick_
