@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "harness.h"
 #include "reference.h"
@@ -23,7 +24,7 @@ double closed_form(phys::Integrator integrator, double x0, double a, double dt, 
     case phys::Integrator::ExplicitEuler:  // x_n = x0 + a dt^2 n(n-1)/2
       return x0 + a * dt * dt * steps * (steps - 1.0) / 2.0;
   }
-  return NAN;
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 TEST(Kinematics, InputMovesOwnBodyAsTheFormulasSay) {
