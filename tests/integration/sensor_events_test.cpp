@@ -15,7 +15,7 @@
 namespace itest {
 namespace {
 
-// Drops a ball into the goal every 30 ticks and takes it away 20 ticks later (a
+// Puts a ball in the goal every 30 ticks and takes it away 20 ticks later (a
 // begin, then an end), and writes down every sensor event the world makes.
 class GoalDropper : public server::GameRules {
  public:
@@ -28,7 +28,7 @@ class GoalDropper : public server::GameRules {
       phys::BodyDef ball;
       ball.shape = phys::Shape::Circle;
       ball.radius = 0.3;
-      ball.position = {10.0, 3.5};
+      ball.position = {11.5, 1.0};  // inside the goal, clear of the ghost balls
       ball_ = world.create(ball);
     }
     if (world.tick() % 30 == 20 && ball_.is_valid()) world.destroy(ball_);
