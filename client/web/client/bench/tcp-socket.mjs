@@ -112,6 +112,15 @@ export class TcpSocket {
     });
   }
 
+  /** Bytes read from and written to the connection, framing included (as node's
+   * net.Socket counts them, and as the `ws` package's socket does under `_socket`). */
+  get bytesRead() {
+    return this.#socket.bytesRead;
+  }
+  get bytesWritten() {
+    return this.#socket.bytesWritten;
+  }
+
   send(data) {
     if (this.readyState !== OPEN) throw new Error("socket not open");
     this.#socket.write(frame(data));

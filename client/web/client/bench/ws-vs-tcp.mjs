@@ -34,6 +34,7 @@ import { createInterface } from "node:readline";
 import { setTimeout as sleep } from "node:timers/promises";
 import WebSocket from "ws";
 import { Client, ConnectionState } from "../dist/index.js";
+import { LightClient } from "./light-client.mjs";
 import { TcpSocket } from "./tcp-socket.mjs";
 
 const [server, scene, csv] = process.argv.slice(2, 5);
@@ -43,7 +44,9 @@ if (!server || !scene || !csv) {
 }
 const [clients, seconds, warmup, rounds] = [5, 6, 7, 8].map((i, k) => Number(process.argv[i] ?? [64, 20, 3, 2][k]));
 const clockTicks = Number(execFileSync("getconf", ["CLK_TCK"]).toString().trim());
-const acceleration = 5;
+const accel = 5;
+// light (bench/light-client.mjs) or full (Client, every snapshot applied).
+const program = process.env.CLIENT_PROGRAM ?? "light";
 
 async function startServer() {
   const child = spawn(
@@ -135,24 +138,100 @@ function ownCpuMs() {
   return (user + system) / 1000;
 }
 
-async function drive(client, index, running) {
-  const phase = (2 * Math.PI * index) / clients;
-  while (running.on) {
-    const snapshot = await client.nextSnapshot(500);
-    if (!snapshot) {
-      if (client.state !== ConnectionState.Connected) return;
-      continue;
+function acceleration(index, tick) {
+  const angle = (2 * Math.PI * index) / clients + (2 * Math.PI * (tick % 120)) / 120;
+  return [accel * Math.cos(angle), accel * Math.sin(angle)];
+}
+
+/** One client of either program, behind the same few calls: connect(ms) resolves
+ * true once joined and starts driving; connected(), detail(), stats, stop(),
+ * disconnect(). */
+function makeClient(url, Transport, kind, index) {
+  const name = `${kind}-${index}`;
+  // The connection's own byte counts, framing included: node's net.Socket, which the
+  // `ws` package's WebSocket holds as _socket.
+  let socket;
+  const Impl = class extends Transport {
+    constructor(...args) {
+      super(...args);
+      socket = this;
     }
-    const tick = snapshot.tick + 1;
-    const angle = phase + (2 * Math.PI * (tick % 120)) / 120;
-    client.sendInput(tick, acceleration * Math.cos(angle), acceleration * Math.sin(angle));
+  };
+  const wire = () => {
+    const raw = socket._socket ?? socket;
+    return { read: raw.bytesRead, written: raw.bytesWritten };
+  };
+  if (program === "light") {
+    const c = new LightClient({
+      url,
+      WebSocket: Impl,
+      name,
+      onSnapshot: (self, tick) => self.sendInput(tick + 1, ...acceleration(index, tick + 1)),
+    });
+    return {
+      connect: (ms) => c.connect(ms),
+      connected: () => c.connected,
+      detail: () => c.detail,
+      stats: c.stats,
+      wire,
+      stop: async () => {},
+      disconnect: () => c.disconnect(),
+    };
   }
+  const c = new Client({ url, WebSocket: Impl, name });
+  let running = false;
+  let loop = Promise.resolve();
+  const drive = async () => {
+    while (running) {
+      const snapshot = await c.nextSnapshot(500);
+      if (!snapshot) {
+        if (c.state !== ConnectionState.Connected) return;
+        continue;
+      }
+      c.sendInput(snapshot.tick + 1, ...acceleration(index, snapshot.tick + 1));
+    }
+  };
+  return {
+    connect: async (ms) => {
+      const ok = await c.connect(ms);
+      if (ok) {
+        running = true;
+        loop = drive();
+      }
+      return ok;
+    },
+    connected: () => c.state === ConnectionState.Connected,
+    detail: () => c.lastError.detail,
+    get stats() {
+      return c.stats;
+    },
+    wire,
+    stop: async () => {
+      running = false;
+      await loop;
+    },
+    disconnect: () => c.disconnect(),
+  };
 }
 
 async function sample(srv, all) {
+  // The clients' counts first, all in one turn of the event loop, so that they agree
+  // with each other; the server's follow within a millisecond or so.
+  const sum = (f) => all.reduce((total, c) => total + f(c), 0);
+  const clientSide = {
+    payloadSent: sum((c) => c.stats.bytesSent),
+    payloadReceived: sum((c) => c.stats.bytesReceived),
+    wireSent: sum((c) => c.wire().written),
+    wireReceived: sum((c) => c.wire().read),
+    messagesSent: sum((c) => c.stats.inputsSent + c.stats.acksSent),
+    messagesReceived: sum((c) => c.stats.snapshotsReceived),
+    clientCpu: ownCpuMs(),
+    wall: performance.now(),
+  };
   const m = await metrics(srv.ports.metrics);
-  const sum = (key) => all.reduce((total, c) => total + c.stats[key], 0);
   return {
+    ...clientSide,
+    serverCpu: processCpuMs(srv.pid),
     ticks: m.physics_ticks_total,
     sent: m.physics_bytes_sent_total,
     received: m.physics_bytes_received_total,
@@ -160,12 +239,6 @@ async function sample(srv, all) {
     skipped: m.physics_snapshots_skipped_total,
     late: m.physics_late_inputs_total,
     playing: m['physics_clients{state="playing"}'],
-    serverCpu: processCpuMs(srv.pid),
-    clientCpu: ownCpuMs(),
-    payloadSent: sum("bytesSent"),
-    payloadReceived: sum("bytesReceived"),
-    snapshotsReceived: sum("snapshotsReceived"),
-    wall: performance.now(),
   };
 }
 
@@ -173,26 +246,39 @@ async function runCase(kind) {
   const srv = await startServer();
   const url = kind === "ws" ? `ws://127.0.0.1:${srv.ports.websocket}/` : `tcp://127.0.0.1:${srv.ports.listening}`;
   const Impl = kind === "ws" ? WebSocket : TcpSocket;
-  const all = Array.from({ length: clients }, (_, i) => new Client({ url, WebSocket: Impl, name: `${kind}-${i}` }));
-  const joined = await Promise.all(all.map((c) => c.connect(10000)));
-  const failed = joined.filter((ok) => !ok).length;
-  if (failed > 0) {
-    const why = all.find((c) => c.state !== ConnectionState.Connected).lastError.detail;
-    await srv.stop();
-    throw new Error(`${kind}: ${failed} of ${clients} clients did not connect: ${why}`);
+  const all = Array.from({ length: clients }, (_, i) => makeClient(url, Impl, kind, i));
+  // moving-1000 has two spawn points: a player is placed at the first free position
+  // near them, and at once about 55 fit. So the clients join 8 at a time, each
+  // starting to drive as soon as it joins (its body drifts off the spawn), and one
+  // refused for want of room tries again half a second later.
+  for (let first = 0; first < clients; first += 8) {
+    const batch = all.slice(first, first + 8);
+    for (let attempt = 1; ; ++attempt) {
+      const waiting = batch.filter((c) => !c.connected());
+      if (waiting.length === 0) break;
+      await Promise.all(waiting.map((c) => c.connect(10000)));
+      const refused = batch.filter((c) => !c.connected());
+      if (refused.length === 0) continue;
+      const why = refused[0].detail();
+      if (attempt === 20 || !why.startsWith("NO_SPAWN")) {
+        await Promise.all(all.map((c) => c.stop()));
+        await srv.stop();
+        throw new Error(`${kind}: ${refused.length} clients did not join: ${why}`);
+      }
+      await sleep(500);
+    }
   }
-  const running = { on: true };
-  const loops = all.map((c, i) => drive(c, i, running));
   await sleep(warmup * 1000);
   const a = await sample(srv, all);
   await sleep(seconds * 1000);
   const b = await sample(srv, all);
-  running.on = false;
-  await Promise.all(loops);
-  const lost = all.filter((c) => c.state !== ConnectionState.Connected).length;
+  await Promise.all(all.map((c) => c.stop()));
+  const lost = all.filter((c) => !c.connected());
   for (const c of all) c.disconnect();
   await srv.stop();
-  if (lost > 0) throw new Error(`${kind}: ${lost} clients lost their connection during the run: ${all.find((c) => c.state !== ConnectionState.Connected).lastError.detail}\n${srv.log()}`);
+  if (lost.length > 0) {
+    throw new Error(`${kind}: ${lost.length} clients lost their connection: ${lost[0].detail()}\n${srv.log()}`);
+  }
   const d = Object.fromEntries(Object.keys(a).map((k) => [k, b[k] - a[k]]));
   return { kind, playing: b.playing, d };
 }
@@ -201,12 +287,13 @@ const columns = [
   ["bytes_sent_per_tick", (d) => d.sent / d.ticks],
   ["bytes_received_per_tick", (d) => d.received / d.ticks],
   ["server_cpu_ms_per_tick", (d) => d.serverCpu / d.ticks],
+  ["snapshots_per_tick", (d) => d.snapshots / d.ticks],
+  ["skipped_per_tick", (d) => d.skipped / d.ticks],
+  ["late_inputs_per_tick", (d) => d.late / d.ticks],
   ["payload_sent_per_tick", (d) => d.payloadReceived / d.ticks],
   ["payload_received_per_tick", (d) => d.payloadSent / d.ticks],
-  ["framing_per_message", (d) => (d.sent - d.payloadReceived) / d.snapshotsReceived],
-  ["snapshots_per_tick", (d) => d.snapshots / d.ticks],
-  ["late_inputs_per_tick", (d) => d.late / d.ticks],
-  ["skipped_per_tick", (d) => d.skipped / d.ticks],
+  ["framing_per_server_message", (d) => (d.wireReceived - d.payloadReceived) / d.messagesReceived],
+  ["framing_per_client_message", (d) => (d.wireSent - d.payloadSent) / d.messagesSent],
   ["client_cpu_ms_per_tick", (d) => d.clientCpu / d.ticks],
 ];
 const header = ["case", "round", "clients", "seconds", "ticks", ...columns.map(([name]) => name)];
