@@ -1,30 +1,34 @@
 // The WebSocket port against the TCP port, with one client program for both: N
-// clients of this package's Client in one node process, over the `ws` package's
-// WebSocket (case ws) or over a plain TCP connection with the varint framing
-// (bench/tcp-socket.mjs, case tcp). For each case, a physics-server of its own:
+// clients in one node process, over the `ws` package's WebSocket (case ws) or over a
+// plain TCP connection with the varint framing (bench/tcp-socket.mjs, case tcp). The
+// program is bench/light-client.mjs (the default), or with CLIENT_PROGRAM=full this
+// package's Client, which applies every snapshot: on this 2-core machine about
+// 650 us of CPU a snapshot (8 clients) against under 100 (64 clients), too much for
+// 64 clients at 60 Hz in one process. At 8 clients both give the server the same
+// bytes and work.
+// For each case, a physics-server of its own:
 //   physics-server --scene SCENE --port 0 --ws-port 0 --metrics-port 0 (and the
 //   per-address limits lifted, since every client comes from 127.0.0.1)
-// Each client connects (default view), then for every snapshot: takes it (which
-// sends its Ack) and sends an Input for the next tick, its acceleration turning on a
-// circle as physics-client --bots does (5 m/s^2, one turn in 120 ticks, each client
-// a phase of its own). After WARMUP s with every client joined, the server's
-// counters and CPU time are read, again SECONDS s later, and the differences are
-// divided by the ticks stepped in between:
-//   bytes_sent, bytes_received   /metrics physics_bytes_*_total: bytes written to and
-//                                read from the sockets, WebSocket frame headers and
-//                                masks included
+// The clients join 8 at a time (default view); each, for every snapshot, sends its
+// Ack, then an Input for the next tick, its acceleration turning on a circle as
+// physics-client --bots does (5 m/s^2, one turn in 120 ticks, each client a phase of
+// its own). WARMUP s after the last joined, the counters are read, again SECONDS s
+// later, and each difference is divided by the ticks stepped in between:
+//   bytes_sent, bytes_received   /metrics physics_bytes_*_total: what the server
+//                                wrote to and read from its sockets, WebSocket frame
+//                                headers and masks included
 //   server_cpu_ms                utime+stime of the server process (/proc/PID/stat)
-//   payload_sent, payload_received   the same two directions counted by the clients
-//                                (ClientStats: message bytes, without framing)
-//   framing_per_message          (bytes_sent - payload_received) per snapshot received:
-//                                the frame header of a message from the server
-//   snapshots                    physics_snapshots_sent_total per tick (N when every
-//                                client keeps up)
-//   late_inputs, skipped          per tick: inputs that came after their tick,
-//                                snapshots skipped for a full window
+//   snapshots                    physics_snapshots_sent_total (N when every client
+//                                keeps up); skipped, late_inputs: snapshots skipped
+//                                for a full window, inputs that came after their tick
+//   payload_sent, payload_received   the same two directions counted by the clients:
+//                                message bytes, without framing
+//   framing_per_server_message, framing_per_client_message   bytes of framing a
+//                                message: the clients' sockets' byte counts less
+//                                the message bytes, per message received or sent
 //   client_cpu_ms                this node process's CPU time (all N clients)
-// The cases take turns (tcp then ws, then ws then tcp, ...) for ROUNDS rounds; a last
-// row per metric is ws/tcp, the ratio of the sums over the rounds.
+// The cases take turns (tcp then ws, then ws then tcp, ...) for ROUNDS rounds; the
+// last row is ws/tcp, each column's ratio of the sums over the rounds.
 // Usage: node bench/ws-vs-tcp.mjs SERVER SCENE CSV [CLIENTS SECONDS WARMUP ROUNDS]
 import { spawn } from "node:child_process";
 import { execFileSync } from "node:child_process";
