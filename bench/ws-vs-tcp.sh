@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # The WebSocket port against the TCP port on the server's side: bytes on the wire and
-# server CPU per tick, 64 clients driving their bodies on moving-1000, the same client
-# program on both ports (the TypeScript client, @physics/client, over the `ws`
-# package or over a plain TCP connection with the varint framing of docs/PROTOCOL.md
-# 1.1). client/web/client/bench/ws-vs-tcp.mjs says what each client does and what
-# each column is. The two cases take turns, ROUNDS rounds (default 2); the last row is
-# the ratio ws/tcp. Builds the package first (npm ci and npm run build, as
-# scripts/test-web.sh does) when its dist/ is missing.
+# server CPU per tick, 64 clients driving their bodies on moving-1000, one client
+# program on both ports, in one node process (client/web/client/bench/: the light
+# client of light-client.mjs, over the `ws` package or over a plain TCP connection
+# with the varint framing of docs/PROTOCOL.md 1.1, tcp-socket.mjs). ws-vs-tcp.mjs
+# there says what each client does and what each column is. The two cases take turns,
+# ROUNDS rounds (default 2); the last row is the ratio ws/tcp. Builds the package
+# first (npm ci and npm run build, as scripts/test-web.sh does) when its dist/ is
+# missing. CLIENT_PROGRAM=full plays @physics/client's Client instead (too slow for
+# 64 at 60 Hz in one process on 2 cores).
 #   bench/ws-vs-tcp.sh                                  64 clients, 20 s after 3 s
 #   CLIENTS=4 DURATION=3 ROUNDS=1 OUT=/tmp/w.csv bench/ws-vs-tcp.sh   a quick look
 # The server is $PHYSICS_SERVER, or $BUILD_DIR/server/physics-server (BUILD_DIR
