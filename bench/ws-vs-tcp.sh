@@ -24,6 +24,7 @@ package=client/web/client
 if [ ! -f "$package/dist/index.js" ]; then
   (cd "$package" && npm ci --no-audit --no-fund --loglevel=error && npm run --silent build)
 fi
+trap 'rm -f "$out.tmp"' EXIT
 echo "ws-vs-tcp: node $(node --version), $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)" >&2
 (cd "$package" && node bench/ws-vs-tcp.mjs "$server" "$root/scenes/moving-1000.textproto" "$out.tmp" \
   "${CLIENTS:-64}" "${DURATION:-20}" "${WARMUP:-3}" "${ROUNDS:-2}") >/dev/null

@@ -30,8 +30,7 @@
 // The cases take turns (tcp then ws, then ws then tcp, ...) for ROUNDS rounds; the
 // last row is ws/tcp, each column's ratio of the sums over the rounds.
 // Usage: node bench/ws-vs-tcp.mjs SERVER SCENE CSV [CLIENTS SECONDS WARMUP ROUNDS]
-import { spawn } from "node:child_process";
-import { execFileSync } from "node:child_process";
+import { execFileSync, spawn } from "node:child_process";
 import { readFileSync, writeFileSync } from "node:fs";
 import { get as httpGet } from "node:http";
 import { createInterface } from "node:readline";
@@ -51,6 +50,10 @@ const clockTicks = Number(execFileSync("getconf", ["CLK_TCK"]).toString().trim()
 const accel = 5;
 // light (bench/light-client.mjs) or full (Client, every snapshot applied).
 const program = process.env.CLIENT_PROGRAM ?? "light";
+if (program !== "light" && program !== "full") {
+  console.error(`CLIENT_PROGRAM is light or full, not ${program}`);
+  process.exit(2);
+}
 
 async function startServer() {
   const child = spawn(
