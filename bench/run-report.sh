@@ -22,7 +22,7 @@ runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
       rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth vocabulary-cost
-      web-client prediction rollback-budget ws-vs-tcp)
+      web-client prediction rollback-budget ws-vs-tcp lobby-rejoiner)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -60,6 +60,7 @@ declare -A writes=(
   [prediction]="netbench-prediction.csv"
   [rollback-budget]="rollback-budget.json"
   [ws-vs-tcp]="ws-vs-tcp.csv"
+  [lobby-rejoiner]="lobby-rejoiner.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
   [netbench]="$(sed -n 's/^run \([^ ]*\) .*/netbench-\1.csv/p' "$here/run-netbench.sh" | tr '\n' ' ')
     netbench-pyramid-one-driver.csv"
@@ -281,6 +282,9 @@ run_web-client() {  # the TypeScript client's cost per snapshot received, in nod
 }
 run_ws-vs-tcp() {  # 64 clients on moving-1000, the WebSocket port against TCP (needs npm; 2 minutes)
   BUILD_DIR="$build" OUT="$out/ws-vs-tcp.csv" "$here/ws-vs-tcp.sh"
+}
+run_lobby-rejoiner() {  # a lockstep stranger who sits again after each drop, beside an honest bot (2 minutes)
+  python3 "$here/lobby-rejoiner.py" --build-dir "$build" --seconds 60 --csv "$out/lobby-rejoiner.csv"
 }
 run_soak() {  # 64 churning clients on moving-1000 for 10 minutes, replayed (physics-soak)
   local soak="$build/tests/soak/physics-soak"
