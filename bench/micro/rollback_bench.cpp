@@ -8,26 +8,20 @@
 
 #include "physics/world.h"
 #include "scenes/scenes.h"
+#include "stepped_world.h"
 
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
-constexpr int kRollbackTicks = 8;
+using microbench::kDt;
+using microbench::stepped_world;
 
-phys::World world_of(const scenes::SceneSpec& scene, int presteps) {
-  phys::WorldSettings settings;
-  settings.gravity = scene.gravity;
-  phys::World world(settings);
-  scenes::add_to_world(world, scene);
-  for (int i = 0; i < presteps; ++i) world.step(kDt);
-  return world;
-}
+constexpr int kRollbackTicks = 8;
 
 // Arg 0: 0 the rain, 1 the rained pile; arg 1: circles.
 phys::World rollback_scene(const benchmark::State& state) {
   const int count = static_cast<int>(state.range(1));
-  if (state.range(0) == 0) return world_of(scenes::rain_scene(count, 1, 0, 0), 60);
-  return world_of(scenes::rained_circles_scene(scenes::circle_pile(count, 0.5)), 300);
+  if (state.range(0) == 0) return stepped_world(scenes::rain_scene(count, 1, 0, 0), 60);
+  return stepped_world(scenes::rained_circles_scene(scenes::circle_pile(count, 0.5)), 300);
 }
 
 void BM_Rollback8(benchmark::State& state) {

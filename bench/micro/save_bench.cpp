@@ -8,25 +8,18 @@
 
 #include "physics/world.h"
 #include "scenes/scenes.h"
+#include "stepped_world.h"
 
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
-
-phys::World world_of(const scenes::SceneSpec& scene, int presteps) {
-  phys::WorldSettings settings;
-  settings.gravity = scene.gravity;
-  phys::World world(settings);
-  scenes::add_to_world(world, scene);
-  for (int i = 0; i < presteps; ++i) world.step(kDt);
-  return world;
-}
+using microbench::kDt;
+using microbench::stepped_world;
 
 // Arg: 0 the rain of N circles 1 s into its fall, 1 the pile of N after 5 s.
 phys::World scene_for(const benchmark::State& state) {
   const int count = static_cast<int>(state.range(1));
-  return state.range(0) == 0 ? world_of(scenes::rain_scene(count, 1, 0, 0), 60)
-                             : world_of(scenes::pile_scene(count), 300);
+  return state.range(0) == 0 ? stepped_world(scenes::rain_scene(count, 1, 0, 0), 60)
+                             : stepped_world(scenes::pile_scene(count), 300);
 }
 
 void per_body(benchmark::State& state, const phys::World& world, double bytes) {
