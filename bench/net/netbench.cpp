@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "client/load.h"
+#include "csv_out.h"
 #include "path_grid.h"
 #include "prediction_bench.h"
 #include "scene/scene.h"
@@ -271,19 +272,14 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
     }
     runs.push_back({file, std::get<scene::SceneDef>(std::move(loaded))});
   }
-  std::FILE* csv = nullptr;
-  if (!csv_path.empty()) {
-    csv = std::fopen(csv_path.c_str(), "w");
-    if (csv == nullptr) {
-      fmt::print(stderr, "physics-netbench: cannot write {}\n", csv_path);
-      return 2;
-    }
-    fmt::print(csv,
+  const CsvOut out =
+      open_csv(csv_path,
                "scene,encoding,still,clients_asked,clients_joined,kbit_per_s_per_client,"
                "bits_per_body_sent,bodies_per_snapshot,snapshots_per_s,worst_error_m,"
                "server_ms_per_tick_mean,server_ms_per_tick_p99,latency_median_ms,"
                "latency_p99_ms,views,input_change_ms\n");
-  }
+  if (!out.ok) return 2;
+  std::FILE* csv = out.file;
 
   fmt::print(
       "| scene | encoding | input held ms | clients (joined) | kbit/s per client | bits per body "

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "client/load.h"
+#include "csv_out.h"
 #include "physics_testing/clients.h"
 #include "physics_testing/in_process_server.h"
 #include "physics_testing/link_conditioner.h"
@@ -267,20 +268,15 @@ void print_row(const Row& r, double tick_rate, std::FILE* csv) {
 }  // namespace
 
 int run_path_grid(const PathGridOptions& options) {
-  std::FILE* csv = nullptr;
-  if (!options.csv_path.empty()) {
-    csv = std::fopen(options.csv_path.c_str(), "w");
-    if (csv == nullptr) {
-      fmt::print(stderr, "physics-netbench: cannot write {}\n", options.csv_path);
-      return 2;
-    }
-    fmt::print(csv,
+  const CsvOut out =
+      open_csv(options.csv_path,
                "mode,clients,behaviour,one_way_ms,jitter_ms,stall_ms,stall_every_ms,seconds,"
                "ticks_per_s,input_delay_median,input_delay_max,input_delay_bound,"
                "lockstep_timeouts_steady,hashes_equal,missing_snapshots,recovery_ms,"
                "snapshots_per_s,latency_median_ms,latency_p99_ms,snapshot_age_median_ms,"
                "snapshot_age_p99_ms,kbit_per_s,skipped_snapshots\n");
-  }
+  if (!out.ok) return 2;
+  std::FILE* csv = out.file;
   std::vector<Path> paths;
   for (const int one_way : options.one_way_ms)
     for (const int jitter : options.jitter_ms) paths.push_back({one_way, jitter, 0, 0});

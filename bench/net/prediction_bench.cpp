@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "client/load.h"
+#include "csv_out.h"
 #include "physics_testing/in_process_server.h"
 #include "physics_testing/link_conditioner.h"
 
@@ -105,20 +106,15 @@ void print_row(const Row& row, std::FILE* csv) {
 }  // namespace
 
 int run_prediction_bench(const PredictionBenchOptions& options) {
-  std::FILE* csv = nullptr;
-  if (!options.csv_path.empty()) {
-    csv = std::fopen(options.csv_path.c_str(), "w");
-    if (csv == nullptr) {
-      fmt::print(stderr, "physics-netbench: cannot write {}\n", options.csv_path);
-      return 2;
-    }
-    fmt::print(csv,
+  const CsvOut out =
+      open_csv(options.csv_path,
                "client,scene,bots_asked,bots_joined,own_input_visible_ms_median,"
                "own_input_visible_ms_p99,input_to_snapshot_ms_median,rollbacks_per_s,"
                "resimulated_ticks_per_s,frame_cpu_ms_median,frame_cpu_ms_p99,"
                "largest_correction_m,largest_smoothed_correction_m,kbit_per_s_per_client,"
                "desyncs,frames\n");
-  }
+  if (!out.ok) return 2;
+  std::FILE* csv = out.file;
   fmt::print(
       "Thin and predicting clients, {} players each changing input every {} ms ({} of them "
       "predicting in the predicting rows), {} Hz fixed rate, {} ms one way + 0-{} ms jitter "
