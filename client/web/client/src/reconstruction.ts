@@ -72,59 +72,53 @@ function finite(...values: number[]) {
   return values.every((v) => Number.isFinite(v));
 }
 
+// One of a snapshot's record lists (quantized, velocity, exact): its ids, one record
+// each from `state(i)`, and its predictor modes, which index this list alone.
+function readList(
+  records: BodyRecord[],
+  list: { idGaps: bigint[]; modes: number[] },
+  what: string,
+  kind: RecordKind,
+  state: (i: number) => { x: number; y: number; vx: number; vy: number },
+) {
+  const n = list.idGaps.length;
+  const ids = decodeIdGaps(list.idGaps, what);
+  const first = records.length;
+  for (let i = 0; i < n; ++i) records.push({ id: ids[i], kind, ...state(i), mode: undefined });
+  readModes(list.modes, n, first, records);
+}
+
 function readRecords(snapshot: WireSnapshot): BodyRecord[] {
   const records: BodyRecord[] = [];
   const q = snapshot.quantized;
   if (q) {
-    const n = q.idGaps.length;
-    sameLength("quantized body", n, q.dx, q.dy, q.dvx, q.dvy);
-    const ids = decodeIdGaps(q.idGaps, "quantized body");
-    const first = records.length;
-    for (let i = 0; i < n; ++i) {
-      records.push({
-        id: ids[i],
-        kind: RecordKind.Quantized,
-        x: Number(q.dx[i]),
-        y: Number(q.dy[i]),
-        vx: Number(q.dvx[i]),
-        vy: Number(q.dvy[i]),
-        mode: undefined,
-      });
-    }
-    readModes(q.modes, n, first, records);
+    sameLength("quantized body", q.idGaps.length, q.dx, q.dy, q.dvx, q.dvy);
+    readList(records, q, "quantized body", RecordKind.Quantized, (i) => ({
+      x: Number(q.dx[i]),
+      y: Number(q.dy[i]),
+      vx: Number(q.dvx[i]),
+      vy: Number(q.dvy[i]),
+    }));
   }
   const v = snapshot.velocities;
   if (v) {
-    const n = v.idGaps.length;
-    sameLength("velocity", n, v.dvx, v.dvy);
-    const ids = decodeIdGaps(v.idGaps, "velocity record");
-    const first = records.length;
-    for (let i = 0; i < n; ++i) {
-      records.push({
-        id: ids[i],
-        kind: RecordKind.Velocity,
-        x: 0,
-        y: 0,
-        vx: Number(v.dvx[i]),
-        vy: Number(v.dvy[i]),
-        mode: undefined,
-      });
-    }
-    readModes(v.modes, n, first, records);
+    sameLength("velocity", v.idGaps.length, v.dvx, v.dvy);
+    readList(records, v, "velocity record", RecordKind.Velocity, (i) => ({
+      x: 0,
+      y: 0,
+      vx: Number(v.dvx[i]),
+      vy: Number(v.dvy[i]),
+    }));
   }
   const e = snapshot.exact;
   if (e) {
-    const n = e.idGaps.length;
-    sameLength("exact body", n, e.x, e.y, e.vx, e.vy);
-    const ids = decodeIdGaps(e.idGaps, "exact body");
-    const first = records.length;
-    for (let i = 0; i < n; ++i) {
+    sameLength("exact body", e.idGaps.length, e.x, e.y, e.vx, e.vy);
+    readList(records, e, "exact body", RecordKind.Exact, (i) => {
       if (!finite(e.x[i], e.y[i], e.vx[i], e.vy[i])) {
         throw new BadSnapshot("an exact body state that is not finite");
       }
-      records.push({ id: ids[i], kind: RecordKind.Exact, x: e.x[i], y: e.y[i], vx: e.vx[i], vy: e.vy[i], mode: undefined });
-    }
-    readModes(e.modes, n, first, records);
+      return { x: e.x[i], y: e.y[i], vx: e.vx[i], vy: e.vy[i] };
+    });
   }
   // ENCODING_FULL's bodies: held as sent, in mode Hold, so that the full encoding has
   // a view hash as the others do.
