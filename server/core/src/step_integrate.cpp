@@ -6,6 +6,7 @@
 // its fat box.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "step_phases.h"
 #include "step_shared.h"
@@ -60,6 +61,7 @@ class FreeMotionPass : StepPhase {
   // carries no trace of the test.
   template <bool kFilter>
   void collect_candidates();
+  void renumber_candidates();
 
   Order order_;
 };
@@ -78,15 +80,19 @@ inline FreeMotion FreeMotionPass::run() {
   bool any_contact_friction = false;
   // The broadphase's reuse check rides along (it reads the same body and the
   // displacement just computed): every body still inside the box its pairs were
-  // found with, in the same order, and those pairs are still a superset of the
-  // ones that can touch (Box2D's fat boxes). The first body outside ends it.
-  bool all_inside = w_.candidates.valid && !order_.changed && w_.candidates.fat_boxes.size() == n;
-  // When the pairs are sure to be found anew (the order or the lists changed, as in
-  // every step of a flowing pile), the boxes they will be found with are made here,
-  // while the body is in cache. A resting stack, whose pairs are kept, pays nothing.
-  const bool fat_made = !all_inside;
+  // found with, and those pairs are still a superset of the ones that can touch
+  // (Box2D's fat boxes). The first body outside ends it. The order may have
+  // changed: each body's box is then found at its old position.
+  bool all_inside = w_.candidates.valid && (!order_.changed || order_.from_known) &&
+                    w_.candidates.fat_boxes.size() == n;
+  const std::uint32_t* const was_at = order_.from_known ? x_.order.from.data() : nullptr;
+  // Once the pairs are sure to be found anew (the lists changed, or a body left its
+  // box, as in every step of a flowing pile), the boxes they will be found with are
+  // made here, while the body is in cache. A resting stack, whose pairs are kept,
+  // pays nothing.
+  std::size_t fat_from = all_inside ? n : 0;  // next_fat_boxes are made from here on
   auto& next_fat = x_.motion.next_fat_boxes;
-  if (fat_made) next_fat.resize(n);
+  next_fat.resize(n);
   bool any_box = false;
   bool any_circle = false;
   for (std::size_t p = 0; p < n; ++p) {
@@ -135,13 +141,17 @@ inline FreeMotion FreeMotionPass::run() {
     }
     x_.motion.velocity[p] = v;
     x_.motion.displacement[p] = d;
-    if (fat_made) {
+    if (all_inside) {
+      const Aabb needed = needed_box(b, d, s_.slop);
+      const Aabb& fat = w_.candidates.fat_boxes[was_at != nullptr ? was_at[p] : p];
+      all_inside = needed.min.x >= fat.min.x && needed.min.y >= fat.min.y &&
+                   needed.max.x <= fat.max.x && needed.max.y <= fat.max.y;
+      if (!all_inside) {
+        fat_from = p;
+        next_fat[p] = fattened(b, needed);
+      }
+    } else {  // from fat_from on
       next_fat[p] = fattened(b, needed_box(b, d, s_.slop));
-    } else if (all_inside) {
-      const Aabb box = needed_box(b, d, s_.slop);
-      const Aabb& fat = w_.candidates.fat_boxes[p];
-      all_inside = box.min.x >= fat.min.x && box.min.y >= fat.min.y && box.max.x <= fat.max.x &&
-                   box.max.y <= fat.max.y;
     }
   }
   w_.counters.bodies_integrated += n;
@@ -151,27 +161,28 @@ inline FreeMotion FreeMotionPass::run() {
   }
   if (any_friction) ++w_.counters.friction_passes;
   if (c_.gravity_on) ++w_.counters.gravity_passes;
-  return {all_inside, fat_made, any_box, any_circle, any_contact_friction};
+  return {all_inside, fat_from, any_box, any_circle, any_contact_friction};
 }
 
 // Candidate pairs for the whole sub-step: boxes fattened by how far each body can
 // move in it, so the pairs hold for both axis moves.
 void FreeMotionPass::find_candidates(const FreeMotion& motion) {
-  const std::size_t n = w_.lists.active.size();
   if (motion.all_inside) {  // run() found the last pairs still good (fat boxes)
+    if (order_.changed) {
+      renumber_candidates();
+      ++w_.counters.broadphase_renumbers;
+    }
     ++w_.counters.broadphase_reuses;
     return;
   }
+  // The last pairs looked reusable until the body at fat_from left its box: the
+  // boxes before it are made now.
   auto& fat = w_.candidates.fat_boxes;
-  if (motion.fat_made) {
-    fat.swap(x_.motion.next_fat_boxes);
-  } else {  // the last pairs looked reusable until a body left its box
-    fat.resize(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      if (order_.scattered) prefetch_ahead(p);
-      const Body& b = body(w_.lists.active[p]);
-      fat[p] = fattened(b, needed_box(b, x_.motion.displacement[p], s_.slop));
-    }
+  fat.swap(x_.motion.next_fat_boxes);
+  for (std::size_t p = 0; p < motion.fat_from; ++p) {
+    if (order_.scattered) prefetch_ahead(p);
+    const Body& b = body(w_.lists.active[p]);
+    fat[p] = fattened(b, needed_box(b, x_.motion.displacement[p], s_.slop));
   }
   x_.broadphase.active_grid.build(fat);
   x_.broadphase.active_grid.find_pairs(x_.broadphase.active_pairs);
@@ -222,6 +233,63 @@ inline void FreeMotionPass::collect_candidates() {
   }
   w_.candidates.first[n] = static_cast<std::uint32_t>(w_.candidates.list.size());
   w_.candidates.valid = true;
+}
+
+// The pairs are kept but the order changed: each pair takes its bodies' new
+// positions (the earlier one its lower body), and the list is regrouped as
+// collect_candidates would list the same fat boxes in the new order (grouped by
+// the lower body's position; in a group the static and sleeping bodies first, as
+// they were, then the awake ones by position), so that what follows cannot tell a
+// kept list from a new one. A counting sort by the lower position and an
+// insertion sort of each group (a handful of pairs): linear in the pairs.
+void FreeMotionPass::renumber_candidates() {
+  const std::size_t n = w_.lists.active.size();
+  const auto& from = x_.order.from;
+  auto& now = x_.broadphase.position_now;
+  now.resize(n);
+  for (std::uint32_t p = 0; p < n; ++p) now[from[p]] = p;
+  auto& fat = w_.candidates.fat_boxes;
+  auto& moved = x_.motion.next_fat_boxes;
+  moved.resize(n);
+  for (std::size_t p = 0; p < n; ++p) moved[p] = fat[from[p]];
+  fat.swap(moved);
+
+  auto& list = w_.candidates.list;
+  auto& first = w_.candidates.first;
+  first.assign(n + 1, 0);
+  for (Candidate& c : list) {
+    c.lower_pos = now[c.lower_pos];
+    if (!c.fixed) {
+      c.upper_pos = now[c.upper_pos];
+      if (c.upper_pos < c.lower_pos) {
+        std::swap(c.lower, c.upper);
+        std::swap(c.lower_pos, c.upper_pos);
+      }
+    }
+    ++first[c.lower_pos + 1];
+  }
+  for (std::size_t p = 0; p < n; ++p) first[p + 1] += first[p];
+  auto& regrouped = x_.broadphase.regrouped;
+  regrouped.resize(list.size());
+  for (const Candidate& c : list) regrouped[first[c.lower_pos]++] = c;
+  // first[p] is now the end of group p: shift it back to the starts.
+  for (std::size_t p = n; p > 0; --p) first[p] = first[p - 1];
+  first[0] = 0;
+  const auto goes_before = [](const Candidate& a, const Candidate& b) {
+    return !b.fixed && (a.fixed || a.upper_pos < b.upper_pos);
+  };
+  for (std::size_t p = 0; p < n; ++p) {
+    for (std::uint32_t k = first[p] + 1; k < first[p + 1]; ++k) {
+      const Candidate c = regrouped[k];
+      std::uint32_t m = k;
+      while (m > first[p] && goes_before(c, regrouped[m - 1])) {
+        regrouped[m] = regrouped[m - 1];
+        --m;
+      }
+      regrouped[m] = c;
+    }
+  }
+  list.swap(regrouped);
 }
 
 }  // namespace

@@ -42,6 +42,11 @@ inline Order OrderPass::run() {
   }
   const bool merged = w_.lists.joined > 0;
   if (merged) merge_joined();
+  // While the candidate pairs hold, the sort carries each body's old position along,
+  // so that the pairs survive a reordering (step_integrate.cpp renumbers them).
+  // It starts at the first move: a stack whose order holds pays nothing for it.
+  const bool track = w_.candidates.valid && !merged;
+  auto& from = x_.order.from;
   // Heights within the slop are ties, broken by slot: a row of boxes at one height
   // keeps its order although rounding moves them by 1e-16 (and the candidate pairs,
   // grouped by position in this order, can then be reused).
@@ -59,10 +64,20 @@ inline Order OrderPass::run() {
       keys[q] = keys[q - 1];
       order[q] = order[q - 1];
       --q;
-      ++moves;
     }
+    if (q == p) continue;
     keys[q] = key;
     order[q] = slot;
+    if (track) {
+      if (moves == 0) {
+        from.resize(order.size());
+        for (std::size_t k = 0; k < order.size(); ++k) from[k] = static_cast<std::uint32_t>(k);
+      }
+      const std::uint32_t was = from[p];
+      for (std::size_t k = p; k > q; --k) from[k] = from[k - 1];
+      from[q] = was;
+    }
+    moves += p - q;
   }
   if (moves > budget) {  // far from sorted (first step, a shuffle): sort outright
     std::vector<std::pair<double, std::uint32_t>> keyed(order.size());
@@ -72,7 +87,8 @@ inline Order OrderPass::run() {
     std::sort(keyed.begin(), keyed.end());
     for (std::size_t p = 0; p < order.size(); ++p) order[p] = keyed[p].second;
   }
-  return {merged || moves > 0, scattered};
+  const bool changed = merged || moves > 0;
+  return {changed, changed && track && moves <= budget, scattered};
 }
 
 // The bodies that joined the list at its rebuild (woken or added) wait at its end

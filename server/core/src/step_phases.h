@@ -22,7 +22,10 @@ void move_kinematic_bodies(WorldImpl& w, double h);
 
 // step_order.cpp: the processing order of the awake bodies, lowest first.
 struct Order {
-  bool changed;    // the order is not last sub-step's (the candidate pairs are stale)
+  bool changed;  // the order is not last sub-step's (the candidates' positions are stale)
+  // Only moves within the kept order changed it, and scratch.order.from says where
+  // each body was: the candidate pairs may be kept, renumbered.
+  bool from_known;
   bool scattered;  // far from slot order: the walks over the bodies prefetch them
 };
 Order order_by_height(const StepContext& ctx, WorldImpl& w);
@@ -30,8 +33,10 @@ Order order_by_height(const StepContext& ctx, WorldImpl& w);
 // step_integrate.cpp: friction, acceleration and gravity as each body's free
 // motion (in scratch.motion), and the candidate pairs it can reach.
 struct FreeMotion {
-  bool all_inside;            // every body inside its fat box: the pairs still hold
-  bool fat_made;              // the new fat boxes are made (scratch.motion.next_fat_boxes)
+  bool all_inside;  // every body inside its fat box: the pairs still hold
+  // The new fat boxes (scratch.motion.next_fat_boxes) are made from this position
+  // on: 0, all of them; the body count, none.
+  std::size_t fat_from;
   bool any_box;               // an awake body is a box
   bool any_circle;            // an awake body is a circle
   bool any_contact_friction;  // an awake body has contact friction

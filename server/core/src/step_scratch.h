@@ -31,6 +31,9 @@ struct StepScratch {
   struct Order {
     std::vector<double> keys;                             // per position: height
     std::vector<std::pair<double, std::uint32_t>> keyed;  // merging joined bodies
+    // Per position: the body's position before the sort, kept while the candidate
+    // pairs are valid (so that they may be kept, renumbered).
+    std::vector<std::uint32_t> from;
   } order;
 
   // Written by integrate (step_integrate.cpp); read by find_candidates, the moves
@@ -47,6 +50,9 @@ struct StepScratch {
     UniformGrid active_grid;
     std::vector<BodyPair> active_pairs;
     std::vector<std::uint32_t> overlaps;
+    // Renumbering kept pairs: per old position, the new one; the list regrouped.
+    std::vector<std::uint32_t> position_now;
+    std::vector<Candidate> regrouped;
   } broadphase;
 
   // The contacts and near misses found: reset by the recipe (step.cpp) before the

@@ -23,7 +23,10 @@ struct StageCounters {
   std::uint64_t swept_hits = 0;         // time-of-impact stops against static bodies
   std::uint64_t friction_holds = 0;     // contacts held in place by static friction
   std::uint64_t broadphase_reuses = 0;  // sub-steps that reused the last candidate pairs
-  std::uint64_t velocity_solves = 0;    // sub-steps whose velocity solver had contacts
+  // Of those, the sub-steps whose processing order had changed: the kept pairs were
+  // renumbered to it rather than found anew.
+  std::uint64_t broadphase_renumbers = 0;
+  std::uint64_t velocity_solves = 0;  // sub-steps whose velocity solver had contacts
   // Contacts with an impulse left out of warm starting: their lower body's
   // warm-start slots (kWarmSlots) were full.
   std::uint64_t warm_start_overflows = 0;

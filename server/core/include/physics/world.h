@@ -150,6 +150,8 @@ class World {
   const StepProfile& last_profile() const;
 
  private:
+  // The core's white-box tests (tests/unit) read the step's state through it.
+  friend struct WorldInternals;
   std::unique_ptr<WorldImpl> impl_;
 };
 
