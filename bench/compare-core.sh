@@ -35,6 +35,9 @@
 #   RESULTS_MAY_DIFFER=1  a change that is meant to change results: report the states
 #                     that differ, but exit 0
 #   OUT=FILE          the CSV (default bench/results/core-comparison.csv)
+#   PROFILE_OUT=FILE  also each core's per-phase profile (StepProfile, wall ms a
+#                     step, mean over the run; a core older than its phase names
+#                     gives zeros), medians over the repeats, per scene and sleep mode
 #   WORK=DIR          exports and the build (default a new temporary directory; kept,
 #                     so a second run with the same WORK builds only what changed)
 #   BUILD=DIR         the build directory (default WORK/build)
@@ -208,6 +211,46 @@ baseline_label="$baseline"
 awk -v ours="$ours_label" -v base="$baseline_label" \
   'NR == 1 { print $0 ",ours_core,baseline_core"; next } { print $0 "," ours "," base }' \
   "$work/table.csv" >"$out"
+
+# Each core's per-phase profile: the median over the repeats of each phase.
+if [[ -n "${PROFILE_OUT:-}" ]]; then
+  phases="order_and_integrate candidates moves position_passes contact_events velocity_solver bounds_and_sleep"
+  for f in "$runs"/*-*.csv; do
+    awk -F, -v phases="$phases" '
+      NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; n = split(phases, phase, " "); next }
+      {
+        printf "%s,%s,%s,%s,%s", $col["scene"], $col["sleeping"], $col["steps"], $col["engine"],
+               $col["cpu_ms_mean"]
+        for (i = 1; i <= n; ++i) printf ",%s", $col["prof_" phase[i] "_ms"]
+        printf "\n"
+      }' "$f"
+  done | awk -F, -v phases="$phases" -v ours="$ours_label" -v base="$baseline_label" '
+    function median(list, count,   i, j, t, a) {
+      split(list, a, " ")
+      for (i = 1; i <= count; ++i) for (j = i + 1; j <= count; ++j) if (a[j] < a[i]) { t = a[i]; a[i] = a[j]; a[j] = t }
+      return count % 2 ? a[(count + 1) / 2] : (a[count / 2] + a[count / 2 + 1]) / 2
+    }
+    {
+      key = $1 "," $2 "," $3 "," $4
+      if (!(key in count)) order[++n] = key
+      ++count[key]
+      for (c = 5; c <= NF; ++c) values[key, c] = values[key, c] " " $c
+      fields = NF
+    }
+    END {
+      printf "scene,sleeping,steps,engine,core,repeats,cpu_ms"
+      m = split(phases, phase, " ")
+      for (i = 1; i <= m; ++i) printf ",%s_ms", phase[i]
+      printf "\n"
+      for (i = 1; i <= n; ++i) {
+        k = order[i]; split(k, part, ",")
+        printf "%s,%s,%d", k, part[4] == "ours" ? ours : base, count[k]
+        for (c = 5; c <= fields; ++c) printf ",%.4g", median(values[k, c], count[k])
+        printf "\n"
+      }
+    }' >"$PROFILE_OUT"
+  echo "compare-core: wrote $PROFILE_OUT" >&2
+fi
 
 echo "compare-core: wrote $out" >&2
 echo

@@ -43,11 +43,17 @@ struct SettingsInit {
   bool profile = true;
 };
 
-// Seconds of the last step, by phase (StepProfile's fields).
+// Seconds of the last step, by phase (StepProfile's fields). A core with the
+// phases of today's StepProfile fills them by their names there (integrate: the
+// order and the free motion; broadphase: the candidates; narrowphase: the position
+// passes; resolve: the velocity solver; sleep: bounds and sleep), moves and contact
+// events included; an older core, whose buckets differed, fills those it had.
 struct Profile {
   double integrate = 0.0;
   double broadphase = 0.0;
+  double moves = 0.0;
   double narrowphase = 0.0;
+  double contact_events = 0.0;
   double resolve = 0.0;
   double sleep = 0.0;
   double total = 0.0;

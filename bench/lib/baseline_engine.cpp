@@ -51,12 +51,15 @@ class BaselineEngine final : public Engine {
 
   void step(double dt) override {
     world_->step(dt, step_profile_);
-    // The baseline core's buckets, in ours: its "integrate" held the moves too,
-    // and its "narrowphase" the contact events' touch tests.
+    // The baseline core's buckets, in ours. An older core's "integrate" held the
+    // moves too, and its "narrowphase" the contact events' touch tests (its moves
+    // and contact events stay 0).
     profile_ = {};
     profile_.order_and_integrate = step_profile_.integrate;
     profile_.candidates = step_profile_.broadphase;
+    profile_.moves = step_profile_.moves;
     profile_.position_passes = step_profile_.narrowphase;
+    profile_.contact_events = step_profile_.contact_events;
     profile_.velocity_solver = step_profile_.resolve;
     profile_.bounds_and_sleep = step_profile_.sleep;
     profile_.total = step_profile_.total;

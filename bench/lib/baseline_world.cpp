@@ -46,7 +46,20 @@ template <typename P>
 Profile profile_of(const P& p) {
   Profile out;
   out.total = p.total;
-  if constexpr (requires { p.integrate + p.broadphase + p.narrowphase + p.resolve + p.sleep; }) {
+  if constexpr (requires {
+                  p.order_and_integrate + p.candidates + p.moves + p.position_passes +
+                      p.contact_events + p.velocity_solver + p.bounds_and_sleep;
+                }) {
+    out.integrate = p.order_and_integrate;
+    out.broadphase = p.candidates;
+    out.moves = p.moves;
+    out.narrowphase = p.position_passes;
+    out.contact_events = p.contact_events;
+    out.resolve = p.velocity_solver;
+    out.sleep = p.bounds_and_sleep;
+  } else if constexpr (requires {
+                         p.integrate + p.broadphase + p.narrowphase + p.resolve + p.sleep;
+                       }) {
     out.integrate = p.integrate;
     out.broadphase = p.broadphase;
     out.narrowphase = p.narrowphase;
