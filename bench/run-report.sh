@@ -21,7 +21,7 @@ results="$here/results"
 runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
-      rain-position-passes det-math-comparison wasm-speed save-restore relay-bandwidth vocabulary-cost
+      rain-position-passes det-math-comparison core-speed pair-reuse wasm-speed save-restore relay-bandwidth vocabulary-cost
       web-client prediction rollback-budget ws-vs-tcp lobby-rejoiner)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
@@ -52,6 +52,8 @@ declare -A writes=(
   [core-comparison-relaxed]="core-comparison-relaxed.csv"
   [rain-position-passes]="accuracy-rain-position-passes.csv"
   [det-math-comparison]="core-comparison-det-math.csv"
+  [core-speed]="core-speed.csv core-speed-profile.csv"
+  [pair-reuse]="core-comparison-pair-reuse.csv"
   [wasm-speed]="wasm-speed.csv"
   [save-restore]="save-restore.json"
   [relay-bandwidth]="netbench-relay.csv"
@@ -270,6 +272,15 @@ run_rain-position-passes() {  # what the position passes after the first cost, r
 }
 run_det-math-comparison() {  # the core with its own exp/expm1/log against the one with libm's
   OUT="$out/core-comparison-det-math.csv" "$here/compare-core.sh" "${DET_MATH_BASELINE:-0da0b44}"
+}
+run_core-speed() {  # this core against 0da0b44's at full step counts, with both profiles
+  QUICK=0 RAIN_COUNTS="1000 4000" SCENES="rain-16000,pyramid-5050,column-50" \
+    OUT="$out/core-speed.csv" PROFILE_OUT="$out/core-speed-profile.csv" \
+    "$here/compare-core.sh" "${SPEED_BASELINE:-0da0b44}"
+}
+run_pair-reuse() {  # pairs kept through a new order against the core before it (78386ff)
+  QUICK=0 RAIN_COUNTS="1000 4000" SCENES="rain-16000,pyramid-5050,column-50" \
+    OUT="$out/core-comparison-pair-reuse.csv" "$here/compare-core.sh" "${PAIR_REUSE_BASELINE:-78386ff}"
 }
 run_vocabulary-cost() {  # filters, sensors, kinematic bodies in instructions (needs BASELINE_HASHES)
   BUILD_DIR="$build" "$here/vocabulary-cost.sh"
