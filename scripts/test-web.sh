@@ -6,27 +6,38 @@
 # examples of docs/PROTOCOL.md 5.7, 600 lockstep ticks of moving-1000 with the view
 # hash compared on every snapshot, the views, the refusals) and the viewer's in
 # headless Chromium (a screenshot's pixels against the server's bodies, the arrow
-# keys). The server is $PHYSICS_SERVER, or build/server/physics-server (scripts/test.sh
-# builds it first in CI; when it is missing, this builds that one target).
+# keys), and the input pacer through physics-netsim's delayed path. The server is
+# $PHYSICS_SERVER, or build/server/physics-server, and the link conditioner
+# $PHYSICS_NETSIM, or build/testing/physics-netsim (scripts/test.sh builds both first
+# in CI; when one is missing, this builds that one target).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir="${BUILD_DIR:-build}"
 
 bash scripts/install-deps.sh web
 
-server="${PHYSICS_SERVER:-$build_dir/server/physics-server}"
-if [ ! -x "$server" ]; then
-  echo "test-web: no $server: building it"
+# build_missing BINARY TARGET: builds TARGET in the build directory when BINARY is not there.
+build_missing() {
+  [ -x "$1" ] && return
+  echo "test-web: no $1: building it"
   bash scripts/install-deps.sh
-  extra=()
+  local extra=()
   if [ "${CI:-}" = "true" ]; then extra+=(-DPHYSICS_WARNINGS_AS_ERRORS=ON); fi
   if [ ! -f "$build_dir/CMakeCache.txt" ]; then
     cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" "${extra[@]}"
   fi
-  cmake --build "$build_dir" -j "$(nproc)" --target physics-server
-fi
+  cmake --build "$build_dir" -j "$(nproc)" --target "$2"
+}
+
+server="${PHYSICS_SERVER:-$build_dir/server/physics-server}"
+build_missing "$server" physics-server
 PHYSICS_SERVER="$(realpath "$server")"
 export PHYSICS_SERVER
+# The link conditioner the pacer's test runs its path through.
+netsim="${PHYSICS_NETSIM:-$build_dir/testing/physics-netsim}"
+build_missing "$netsim" physics-netsim
+PHYSICS_NETSIM="$(realpath "$netsim")"
+export PHYSICS_NETSIM
 echo "test-web: node $(node --version), npm $(npm --version), $(protoc --version), $(/usr/bin/chromium --version 2>/dev/null || echo 'no chromium')"
 
 # The viewer depends on the client package (file:../client): the client builds first.

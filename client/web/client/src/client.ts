@@ -146,6 +146,10 @@ export class Client {
   get bufferedSnapshots(): number {
     return this.snapshots.length;
   }
+  /** The clock (ms) snapshots and pongs are stamped with, and pings carry. */
+  now(): number {
+    return this.config.now();
+  }
   /** The view hash (docs/PROTOCOL.md 5.6) of what this client holds now. */
   viewHash(): bigint {
     return this.reconstruction.hash();
@@ -289,6 +293,13 @@ export class Client {
   async nextPong(timeoutMs: number): Promise<Pong | undefined> {
     await this.waitUntil(() => this.pongs.length > 0, timeoutMs);
     return this.pongs.shift();
+  }
+
+  /** The pongs received and not yet taken, oldest first (at most 256 are kept). */
+  takePongs(): Pong[] {
+    const pongs = this.pongs;
+    this.pongs = [];
+    return pongs;
   }
 
   /** The game's messages received so far, oldest first (at most 256 are kept). */

@@ -12,3 +12,7 @@ export { Fnv64, doubleBits, doubleFromBits } from "./words.js";
 export { globalWebSocket } from "./socket.js";
 export type { WebSocketConstructor, WebSocketLike } from "./socket.js";
 export * as wire from "./gen/wire_pb.js";
+export { InputClock, defaultInputClockConfig } from "./input_clock.js";
+export type { InputClockConfig } from "./input_clock.js";
+export { InputPacer, InputSchedule } from "./input_pacer.js";
+export type { InputFor, PacerConfig, PacerStats } from "./input_pacer.js";

@@ -52,3 +52,40 @@ export async function startServer(args = [], { timeoutMs = 10000 } = {}) {
     },
   };
 }
+
+export const netsimBinary = process.env.PHYSICS_NETSIM || `${repoRoot}build/testing/physics-netsim`;
+
+/** Starts physics-netsim relaying to the server's port `targetPort` with `args` (its
+ * path: --latency-ms and so on); resolves to { url, port, stop() } once it listens. */
+export async function startNetsim(targetPort, args = [], { timeoutMs = 10000 } = {}) {
+  if (!existsSync(netsimBinary)) {
+    throw new Error(`no physics-netsim at ${netsimBinary}: build it, or set PHYSICS_NETSIM`);
+  }
+  const child = spawn(netsimBinary, ["--port", "0", "--to", `127.0.0.1:${targetPort}`, ...args], {
+    stdio: ["ignore", "pipe", "pipe"],
+  });
+  let stderr = "";
+  child.stderr.on("data", (chunk) => {
+    stderr += chunk;
+  });
+  const exited = new Promise((resolve) => child.on("exit", (code, signal) => resolve({ code, signal })));
+  const lines = createInterface({ input: child.stdout });
+  const port = await new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`physics-netsim printed no port in ${timeoutMs} ms:\n${stderr}`)), timeoutMs);
+    exited.then(({ code, signal }) => reject(new Error(`physics-netsim exited (${code ?? signal}):\n${stderr}`)));
+    lines.on("line", (line) => {
+      const match = line.match(/^listening on (.*):(\d+)$/);
+      if (!match) return;
+      clearTimeout(timer);
+      resolve(Number(match[2]));
+    });
+  });
+  return {
+    url: `ws://127.0.0.1:${port}/`,
+    port,
+    async stop() {
+      if (child.exitCode === null && child.signalCode === null) child.kill("SIGTERM");
+      await exited;
+    },
+  };
+}
