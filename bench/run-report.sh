@@ -212,13 +212,14 @@ run_save-restore() {  # the world's saved state: save, restore, bytes (about a m
   "$micro" --benchmark_filter='SaveInto|Restore|ToBytes|FromBytes|StepForScale' \
     --benchmark_min_time=0.2 --benchmark_out="$out/save-restore.json" --benchmark_out_format=json
 }
-run_relay-bandwidth() {  # 8 players, the input relay beside the snapshot encodings (about 4 minutes)
+run_relay-bandwidth() {  # 8 players, the input relay beside the snapshot encodings (about 8 minutes)
   local netbench="$build/bench/physics-netbench"
   [[ -x "$netbench" ]] || { echo "run-report: $netbench not built" >&2; return 1; }
-  # Inputs changed every tick, and held for 500 ms as a player holds a key.
+  # Inputs changed every tick, and held for 500 ms as a player holds a key; a snapshot
+  # every tick, and every third.
   "$netbench" --scenes scenes/moving-1000.textproto,scenes/large-4000.textproto --bots 8 \
-    --encodings inputs,predicted --input-change-ms 0,500 --duration 5 --warmup 1 \
-    --csv "$out/netbench-relay.csv"
+    --encodings inputs,predicted --input-change-ms 0,500 --snapshot-intervals 1,3 --duration 5 \
+    --warmup 1 --csv "$out/netbench-relay.csv"
 }
 run_prediction() {  # the thin and the predicting client through one 100 ms path (about 2 minutes)
   local netbench="$build/bench/physics-netbench"

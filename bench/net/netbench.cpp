@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "client/load.h"
@@ -81,12 +82,22 @@ bool parse_encoding(const std::string& name, client::Encoding& out) {
   return true;
 }
 
+// Every pair of an input hold and a snapshot interval, holds outermost.
+std::vector<std::pair<int, int>> runs_of(const std::vector<int>& change_ms,
+                                         const std::vector<int>& snapshot_intervals) {
+  std::vector<std::pair<int, int>> out;
+  for (const int held : change_ms) {
+    for (const int interval : snapshot_intervals) out.emplace_back(held, interval);
+  }
+  return out;
+}
+
 }  // namespace
 
 int run_all(const std::vector<std::string>& scene_files, const std::vector<int>& bot_counts,
             const std::vector<std::string>& encodings, const std::vector<int>& change_ms,
-            double duration, double warmup, double settle, double tick_rate, bool still,
-            const std::string& csv_path);
+            const std::vector<int>& snapshot_intervals, double duration, double warmup,
+            double settle, double tick_rate, bool still, const std::string& csv_path);
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -137,6 +148,13 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->delimiter(',')
       ->check(CLI::Range(0, 600000));
+  std::vector<int> snapshot_intervals{1};
+  app.add_option("--snapshot-intervals", snapshot_intervals,
+                 "The bots' view.snapshot_interval: a snapshot every N-th tick, one run each (the "
+                 "input relay then carries N ticks a snapshot)")
+      ->capture_default_str()
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1000));
   app.add_option("--csv", csv_path, "Also write the table as CSV to this file");
   // The path grid (docs/BENCHMARKS.md, "Over real paths").
   bool paths = false;
@@ -243,8 +261,8 @@ int main(int argc, char** argv) {
       grid.fixed = std::find(modes.begin(), modes.end(), "fixed") != modes.end();
       return netbench::run_path_grid(grid);
     }
-    return run_all(scene_files, bot_counts, encodings, change_ms, duration, warmup, settle,
-                   tick_rate, still, csv_path);
+    return run_all(scene_files, bot_counts, encodings, change_ms, snapshot_intervals, duration,
+                   warmup, settle, tick_rate, still, csv_path);
   } catch (const std::invalid_argument& error) {
     // A setting the server refuses (a tick rate the scene cannot take, ...).
     fmt::print(stderr, "physics-netbench: {}\n", error.what());
@@ -257,8 +275,8 @@ int main(int argc, char** argv) {
 
 int run_all(const std::vector<std::string>& scene_files, const std::vector<int>& bot_counts,
             const std::vector<std::string>& encodings, const std::vector<int>& change_ms,
-            double duration, double warmup, double settle, double tick_rate, bool still,
-            const std::string& csv_path) {
+            const std::vector<int>& snapshot_intervals, double duration, double warmup,
+            double settle, double tick_rate, bool still, const std::string& csv_path) {
   std::vector<Run> runs;
   for (const std::string& file : scene_files) {
     if (file == "default") {
@@ -277,22 +295,21 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
                "scene,encoding,still,clients_asked,clients_joined,kbit_per_s_per_client,"
                "bits_per_body_sent,bodies_per_snapshot,snapshots_per_s,worst_error_m,"
                "server_ms_per_tick_mean,server_ms_per_tick_p99,latency_median_ms,"
-               "latency_p99_ms,views,input_change_ms\n");
+               "latency_p99_ms,views,input_change_ms,snapshot_interval\n");
   if (!out.ok) return 2;
   std::FILE* csv = out.file;
 
   fmt::print(
-      "| scene | encoding | input held ms | clients (joined) | kbit/s per client | bits per body "
-      "sent | bodies "
-      "per snapshot | snapshots/s | worst error m | server ms/tick mean | p99 | input->snapshot "
-      "median ms | p99 ms |\n");
-  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "| scene | encoding | input held ms | snapshot interval | clients (joined) | kbit/s per "
+      "client | bits per body sent | bodies per snapshot | snapshots/s | worst error m | server "
+      "ms/tick mean | p99 | input->snapshot median ms | p99 ms |\n");
+  fmt::print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Run& run : runs) {
     for (const std::string& encoding_name : encodings) {
       client::Encoding encoding{};
       parse_encoding(encoding_name, encoding);
       for (const int bots : bot_counts) {
-        for (const int held_ms : change_ms) {
+        for (const auto& [held_ms, interval] : runs_of(change_ms, snapshot_intervals)) {
           server::ServerConfig config;
           config.port = 0;
           config.tick_rate = tick_rate;
@@ -309,6 +326,7 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
           load.client.port = server.port();
           load.client.name = "netbench";
           load.client.view.encoding = encoding;
+          load.client.view.snapshot_interval = static_cast<std::uint32_t>(interval);
           load.client.want_world = encoding == client::Encoding::Inputs;
           // The world's state in the Welcome: about 300 bytes a body.
           if (load.client.want_world) load.client.max_message_bytes = std::size_t{64} << 20;
@@ -341,9 +359,9 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
                   ? static_cast<double>(report.records) / static_cast<double>(report.snapshots)
                   : 0.0;
           fmt::print(
-              "| {} | {} | {} | {} ({}) | {:.1f} | {} | {:.1f} | {:.1f} | {:.4f} | {:.3f} | "
+              "| {} | {} | {} | {} | {} ({}) | {:.1f} | {} | {:.1f} | {:.1f} | {:.4f} | {:.3f} | "
               "{:.3f} | {} | {} |\n",
-              run.scene.name, encoding_name, held_ms, bots, report.bots_connected, kbit,
+              run.scene.name, encoding_name, held_ms, interval, bots, report.bots_connected, kbit,
               // No body sent in the run: no bits per body to speak of.
               report.records > 0 ? fmt::format("{:.1f}", bits_per_body) : std::string("-"),
               bodies_per_snapshot, report.snapshots_per_second_mean, stats.max_view_error, mean_ms,
@@ -352,11 +370,11 @@ int run_all(const std::vector<std::string>& scene_files, const std::vector<int>&
           if (csv != nullptr) {
             fmt::print(csv,
                        "{},{},{},{},{},{:.3f},{:.2f},{:.3f},{:.2f},{:.6f},{:.4f},{:.4f},{:.3f},{:."
-                       "3f},{},{}\n",
+                       "3f},{},{},{}\n",
                        run.scene.name, encoding_name, still ? 1 : 0, bots, report.bots_connected,
                        kbit, bits_per_body, bodies_per_snapshot, report.snapshots_per_second_mean,
                        stats.max_view_error, mean_ms, p99_ms, report.latency_median_ms,
-                       report.latency_p99_ms, stats.views, held_ms);
+                       report.latency_p99_ms, stats.views, held_ms, interval);
           }
           std::fflush(stdout);
           fmt::print(stderr,
