@@ -7,6 +7,8 @@ cd "$(dirname "$0")/.."
 build_dir="${BUILD_DIR:-build}"
 extra=()
 if [ "${CI:-}" = "true" ]; then extra+=(-DPHYSICS_WARNINGS_AS_ERRORS=ON); fi
+source scripts/lib/compiler-cache.sh
+extra+=("${compiler_cache[@]}")
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="${BUILD_TYPE:-Release}" \
   "${extra[@]}" "$@"
 cmake --build "$build_dir" -j "$(nproc)"

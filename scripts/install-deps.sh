@@ -24,6 +24,8 @@ case "${1:-}" in
     ;;
   "") packages=(
   build-essential cmake ninja-build pkg-config
+  # Compiler caching (scripts/build.sh uses it where it is installed).
+  ccache
   libasio-dev libprotobuf-dev protobuf-compiler
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev libspdlog-dev libfmt-dev

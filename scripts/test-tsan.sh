@@ -5,11 +5,12 @@
 # The Tool suite's lockstep golden checks the Debug build's hash on the way.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/compiler-cache.sh
 build_dir="${TSAN_BUILD_DIR:-build-tsan}"
 werror=OFF
 if [ "${CI:-}" = "true" ]; then werror=ON; fi
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPHYSICS_TSAN=ON \
-  -DPHYSICS_BUILD_BENCH=OFF -DPHYSICS_WARNINGS_AS_ERRORS="$werror"
+  -DPHYSICS_BUILD_BENCH=OFF -DPHYSICS_WARNINGS_AS_ERRORS="$werror" "${compiler_cache[@]}"
 cmake --build "$build_dir" -j "$(nproc)" --target server_socket_tests physics_integration_tests
 # halt_on_error: the first race fails the run instead of scrolling past.
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1"

@@ -6,6 +6,7 @@
 # instead of three: the server and its tests are compiled once for all of them.
 #
 # clang_build TARGET...: configures the build directory and builds the targets.
+source scripts/lib/compiler-cache.sh
 clang_build_dir="${CLANG_BUILD_DIR:-build-clang}"
 
 clang_build() {
@@ -15,7 +16,7 @@ clang_build() {
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
     -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
     -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DPHYSICS_FUZZ=ON \
-    -DPHYSICS_BUILD_BENCH=OFF -DPHYSICS_WARNINGS_AS_ERRORS="$werror"
+    -DPHYSICS_BUILD_BENCH=OFF -DPHYSICS_WARNINGS_AS_ERRORS="$werror" "${compiler_cache[@]}"
   cmake --build "$clang_build_dir" -j "$(nproc)" --target "$@"
 }
 

@@ -1,0 +1,11 @@
+# Sourced by the build scripts: compiler caching where ccache is installed
+# (scripts/install-deps.sh installs it), so that a fresh clone on a machine that built
+# before compiles only what changed. Sets `compiler_cache` to the cmake arguments
+# (empty without ccache). The precompiled headers are cached only with ccache's pch
+# sloppiness, and CCACHE_BASEDIR makes paths relative so that two clones share hits.
+compiler_cache=()
+if command -v ccache >/dev/null; then
+  compiler_cache_launcher="env;CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime;CCACHE_BASEDIR=$PWD;ccache"
+  compiler_cache=("-DCMAKE_C_COMPILER_LAUNCHER=$compiler_cache_launcher"
+    "-DCMAKE_CXX_COMPILER_LAUNCHER=$compiler_cache_launcher")
+fi
