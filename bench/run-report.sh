@@ -22,7 +22,7 @@ runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
       rain-position-passes det-math-comparison core-speed pair-reuse wasm-speed save-restore relay-bandwidth vocabulary-cost
-      web-client prediction rollback-budget ws-vs-tcp lobby-rejoiner)
+      web-client prediction rollback-budget ws-vs-tcp lobby-rejoiner query-cost)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -61,6 +61,7 @@ declare -A writes=(
   [web-client]="web-client.csv"
   [prediction]="netbench-prediction.csv"
   [rollback-budget]="rollback-budget.json"
+  [query-cost]="query-cost.csv"
   [ws-vs-tcp]="ws-vs-tcp.csv"
   [lobby-rejoiner]="lobby-rejoiner.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
@@ -236,6 +237,12 @@ run_rollback-budget() {  # restore and 8 steps on rains and rained piles of 1,00
   [[ -x "$micro" ]] || { echo "run-report: $micro not built (ninja -C $build physics-microbench)" >&2; return 1; }
   "$micro" --benchmark_filter='Rollback8' --benchmark_min_time=0.5 \
     --benchmark_out="$out/rollback-budget.json" --benchmark_out_format=json
+}
+run_query-cost() {  # each world query on rained piles of 1,000 and 16,000 circles (about 2 minutes)
+  local micro="$build/bench/physics-microbench"
+  [[ -x "$micro" ]] || { echo "run-report: $micro not built (ninja -C $build physics-microbench)" >&2; return 1; }
+  "$micro" --benchmark_filter='BM_Query' --benchmark_min_time=0.2 \
+    --benchmark_out="$out/query-cost.csv" --benchmark_out_format=csv
 }
 run_netbench() { BUILD_DIR="$build" "$here/run-netbench.sh"; }
 run_net-paths() {  # lockstep and fixed rate through the link conditioner (about 8 minutes)

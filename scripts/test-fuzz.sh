@@ -8,7 +8,7 @@
 #   scripts/test-fuzz.sh --long     the nightly (or local) run: 600 s each, unless
 #                                   FUZZ_SECONDS says otherwise
 #   scripts/test-fuzz.sh --seeds    rewrite tests/fuzz/corpus/ from real messages
-# FUZZ_HARNESSES="replay scene" runs only those (default: all five).
+# FUZZ_HARNESSES="replay scene" runs only those (default: all seven).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib/clang-build.sh
@@ -16,7 +16,7 @@ build_dir="$clang_build_dir"
 default_seconds=15
 if [ "${1:-}" = "--long" ]; then default_seconds=600; fi
 seconds="${FUZZ_SECONDS:-$default_seconds}"
-read -r -a harnesses <<<"${FUZZ_HARNESSES:-server_messages client snapshot scene replay}"
+read -r -a harnesses <<<"${FUZZ_HARNESSES:-server_messages client snapshot scene replay world_bytes relay_follow}"
 
 targets=(make_fuzz_seeds)
 for name in "${harnesses[@]}"; do targets+=("${name}_fuzz"); done

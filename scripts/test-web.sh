@@ -6,7 +6,8 @@
 # examples of docs/PROTOCOL.md 5.7, 600 lockstep ticks of moving-1000 with the view
 # hash compared on every snapshot, the views, the refusals) and the viewer's in
 # headless Chromium (a screenshot's pixels against the server's bodies, the arrow
-# keys), and the input pacer through physics-netsim's delayed path. The server is
+# keys, a key bound to a game message and the rules' answer in the panel, goal rush's
+# sensors and moving platform), and the input pacer through physics-netsim's delayed path. The server is
 # $PHYSICS_SERVER, or build/server/physics-server, and the link conditioner
 # $PHYSICS_NETSIM, or build/testing/physics-netsim (scripts/test.sh builds both first
 # in CI; when one is missing, this builds that one target).
@@ -38,6 +39,16 @@ netsim="${PHYSICS_NETSIM:-$build_dir/testing/physics-netsim}"
 build_missing "$netsim" physics-netsim
 PHYSICS_NETSIM="$(realpath "$netsim")"
 export PHYSICS_NETSIM
+# The rules the viewer's game test loads: one that answers every game message, and
+# goal rush's.
+echo_rules="${PHYSICS_ECHO_RULES:-$build_dir/tests/client/libphysics_test_rules_echo.so}"
+build_missing "$echo_rules" physics_test_rules_echo
+PHYSICS_ECHO_RULES="$(realpath "$echo_rules")"
+export PHYSICS_ECHO_RULES
+goal_rush_rules="${PHYSICS_GOAL_RUSH_RULES:-$build_dir/examples/goal-rush/libgoal_rush.so}"
+build_missing "$goal_rush_rules" goal_rush_rules_plugin
+PHYSICS_GOAL_RUSH_RULES="$(realpath "$goal_rush_rules")"
+export PHYSICS_GOAL_RUSH_RULES
 echo "test-web: node $(node --version), npm $(npm --version), $(protoc --version), $(/usr/bin/chromium --version 2>/dev/null || echo 'no chromium')"
 
 # The viewer depends on the client package (file:../client): the client builds first.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "client/client.h"
+#include "client/game_message_plan.h"
 #include "client/input_pacer.h"
 #include "client/load.h"
 #include "pattern.h"
@@ -39,6 +40,7 @@ struct Options {
   double duration_seconds = 5.0;
   int connect_timeout_ms = 5000;
   int input_change_ms = 0;
+  client::GameMessagePlan messages;
 };
 
 int run_single(const Options& options) {
@@ -61,7 +63,11 @@ int run_single(const Options& options) {
   // round trip. The acceleration of a tick depends on the tick alone.
   const bool watching = welcome.spectator;  // a spectator has no body to steer
   client::InputPacer pacer(connection, options.pacer);
-  const auto input = [&](std::uint64_t tick) { return pattern.at(tick); };
+  client::GameMessageSender messages(options.messages);
+  const auto input = [&](std::uint64_t tick) {
+    messages.before_input(connection, tick, std::chrono::steady_clock::now());
+    return pattern.at(tick);
+  };
   // Without a snapshot for this long the server is presumed gone.
   const auto snapshot_timeout =
       std::max(2000ms, std::chrono::milliseconds(static_cast<long>(4000.0 / welcome.tick_rate)));
@@ -81,6 +87,9 @@ int run_single(const Options& options) {
                                                    options.client.view.state_hash));
     for (const client::ContactEvent& event : snapshot->contact_events) {
       fmt::print("{}\n", client_app::format_contact_event(event, options.json));
+    }
+    for (const client::GameMessage& message : connection.take_game_messages()) {
+      fmt::print("{}\n", client_app::format_game_message(message, options.json));
     }
     if (snapshot->contact_events_dropped > 0) {
       fmt::print(stderr, "physics-client: {} contact events lost over the server's limit\n",
@@ -107,6 +116,7 @@ int run_bots(const Options& options) {
   load.input_change_interval = std::chrono::milliseconds(options.input_change_ms);
   load.predict = options.predict;
   load.prediction = options.prediction;
+  load.messages = options.messages;
   const client::LoadReport report = client::run_load(load);
   fmt::print("{}\n", client_app::format_load_report(report, options.json));
   if (report.bots_connected == 0) {
@@ -214,6 +224,18 @@ int main(int argc, char** argv) {
                "Print contact events: a player's own body's, a spectator's of every body");
   app.add_option("--contact-bodies", contact_bodies,
                  "Spectators: print the contact events of these body ids only (at most 64)");
+  auto* game_message =
+      app.add_option("--game-message", options.messages.payloads,
+                     "Send this game message (docs/PROTOCOL.md 3.9) just before the first input; "
+                     "repeat for up to 4, sent together in order. Received game messages are "
+                     "printed, the payload as text when it is UTF-8, else as base64")
+          ->excludes("--spectate");
+  int message_every_ms = 0;
+  app.add_option("--message-every-ms", message_every_ms,
+                 "Send the --game-message payloads again every N ms, before the input of the "
+                 "tick then due (default: once)")
+      ->check(CLI::Range(1, 3600000))
+      ->needs(game_message);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -235,6 +257,12 @@ int main(int argc, char** argv) {
                                  : encoding == "full" ? client::Encoding::Full
                                                       : client::Encoding::Predicted;
 
+  options.messages.every = std::chrono::milliseconds(message_every_ms);
+  if (const std::string problem = client::check_game_message_plan(options.messages);
+      !problem.empty()) {
+    fmt::print(stderr, "physics-client: --game-message: {}\n", problem);
+    return kExitUsage;
+  }
   for (const double value : options.accel) {
     if (!std::isfinite(value)) {
       fmt::print(stderr, "physics-client: --accel must be finite numbers\n");
@@ -248,6 +276,7 @@ int main(int argc, char** argv) {
     run.config.prediction = options.prediction;
     if (options.accel.size() == 2)
       run.pattern.constant = client::Vec2{options.accel[0], options.accel[1]};
+    run.messages = options.messages;
     run.ticks = options.ticks;
     run.json = options.json;
     run.connect_timeout = std::chrono::milliseconds(options.connect_timeout_ms);

@@ -45,7 +45,11 @@ int run_predicting(const PredictingRun& run) {
   }
   fmt::print(stderr, "{}\n", format_welcome(player.welcome(), false));
   if (run.json) fmt::print("{}\n", format_welcome(player.welcome(), true));
-  const auto input = [&](std::uint64_t tick) { return run.pattern.at(tick); };
+  client::GameMessageSender messages(run.messages);
+  const auto input = [&](std::uint64_t tick) {
+    messages.before_input(player.connection(), tick, std::chrono::steady_clock::now());
+    return run.pattern.at(tick);
+  };
   const auto snapshot_timeout = std::max(
       2000ms, std::chrono::milliseconds(static_cast<long>(4000.0 / player.welcome().tick_rate)));
   std::uint64_t printed = 0;
@@ -63,6 +67,9 @@ int run_predicting(const PredictingRun& run) {
     if (polled != client::PollResult::Snapshot) continue;
     last_snapshot = std::chrono::steady_clock::now();
     fmt::print("{}\n", format_prediction(player, run.json));
+    for (const client::GameMessage& message : player.connection().take_game_messages()) {
+      fmt::print("{}\n", format_game_message(message, run.json));
+    }
     std::fflush(stdout);
     ++printed;
   }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 
+#include "client/game_message_plan.h"
 #include "client/predicting_client.h"
 #include "pattern.h"
 
@@ -13,7 +14,8 @@ namespace client_app {
 struct PredictingRun {
   client::PredictingClientConfig config;
   AccelerationPattern pattern;
-  std::uint64_t ticks = 0;  // snapshots to print; 0: until the session ends
+  client::GameMessagePlan messages;  // sent before the inputs; those received printed
+  std::uint64_t ticks = 0;           // snapshots to print; 0: until the session ends
   bool json = false;
   std::chrono::milliseconds connect_timeout{5000};
 };

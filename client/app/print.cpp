@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "payload_text.h"
 #include "text/json_escape.h"
 
 namespace client_app {
@@ -58,6 +59,18 @@ std::string format_contact_event(const client::ContactEvent& event, bool json) {
       event.normal.y, event.closing_speed);
 }
 
+std::string format_game_message(const client::GameMessage& message, bool json) {
+  const bool text = is_utf8(message.payload);
+  if (json) {
+    return fmt::format("{{\"game_message\":{{\"tick\":{},\"{}\":\"{}\"}}}}", message.tick,
+                       text ? "text" : "base64",
+                       text ? text::json_escape(message.payload) : base64(message.payload));
+  }
+  // Text lines stay one line: the payload's control characters are escaped as JSON's.
+  return fmt::format("game message tick {}{}: {}", message.tick, text ? "" : " (base64)",
+                     text ? text::json_escape(message.payload) : base64(message.payload));
+}
+
 std::string format_load_report(const client::LoadReport& report, bool json) {
   if (json) {
     return fmt::format(
@@ -65,8 +78,8 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         "\"latency_median_ms\":{:.3f},\"latency_p99_ms\":{:.3f},\"latency_max_ms\":{:.3f},"
         "\"bytes_per_second_mean\":{:.0f},\"bytes_per_second_min\":{:.0f},"
         "\"bytes_per_second_max\":{:.0f},\"snapshots_per_second\":{:.2f},"
-        "\"ticks_per_second\":{:.2f},\"input_delay_ticks\":{:.1f},"
-        "\"input_delay_ticks_min\":{},\"input_delay_ticks_max\":{},"
+        "\"ticks_per_second\":{:.2f},\"input_delay_ticks_median\":{:.1f},"
+        "\"input_delay_ticks_final_min\":{},\"input_delay_ticks_final_max\":{},"
         "\"snapshot_age_ms_median\":{:.3f},\"snapshot_age_ms_p99\":{:.3f},"
         "\"late_inputs\":{},\"inputs_sent\":{},"
         "\"inputs_unanswered\":{},\"snapshots_dropped\":{},\"failures\":{},"
@@ -75,6 +88,7 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         "\"resimulated_ticks_per_second\":{:.2f},\"largest_correction_m\":{:.6f},"
         "\"largest_smoothed_correction_m\":{:.6f},\"desyncs\":{},\"resyncs\":{},"
         "\"frame_cpu_ms_median\":{:.3f},\"frame_cpu_ms_p99\":{:.3f},\"frames\":{},"
+        "\"game_messages_sent\":{},\"game_messages_received\":{},"
         "\"bytes_per_second\":{:.0f}}}",
         report.bots_requested, report.bots_connected, report.seconds, report.latency_samples,
         report.latency_median_ms, report.latency_p99_ms, report.latency_max_ms,
@@ -87,13 +101,13 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         report.rollbacks_per_second, report.resimulated_ticks_per_second,
         report.largest_correction_m, report.largest_smoothed_correction_m, report.desyncs,
         report.resyncs, report.frame_cpu_ms_median, report.frame_cpu_ms_p99, report.frames,
-        report.bytes_per_second_mean);
+        report.game_messages_sent, report.game_messages_received, report.bytes_per_second_mean);
   }
   std::string text = fmt::format(
       "bots {} (connected {}) over {:.2f} s\n"
       "input -> snapshot latency: median {:.3f} ms, p99 {:.3f} ms, max {:.3f} ms ({} samples)\n"
       "received per client: mean {:.0f} B/s (min {:.0f}, max {:.0f}), {:.2f} snapshots/s\n"
-      "server ticks {:.2f}/s; input delay {:.1f} ticks (at the end {} to {}); "
+      "server ticks {:.2f}/s; input delay median {:.1f} ticks over the run, at the end {} to {}; "
       "newest snapshot age median {:.1f} ms, p99 {:.1f} ms; late inputs {}\n"
       "inputs sent {}, unanswered at the end {}, snapshots dropped by client buffer {}",
       report.bots_requested, report.bots_connected, report.seconds, report.latency_median_ms,
@@ -105,6 +119,10 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
       report.snapshots_dropped);
   text += fmt::format("\ninput -> shown: median {:.3f} ms, p99 {:.3f} ms",
                       report.own_input_visible_ms_median, report.own_input_visible_ms_p99);
+  if (report.game_messages_sent > 0 || report.game_messages_received > 0) {
+    text += fmt::format("\ngame messages: {} sent, {} received", report.game_messages_sent,
+                        report.game_messages_received);
+  }
   if (report.predicting) {
     text += fmt::format(
         "\nprediction: {:.2f} rollbacks/s, {:.2f} ticks stepped again/s, largest correction "

@@ -14,6 +14,9 @@ std::string format_welcome(const client::Welcome& welcome, bool json);
 std::string format_snapshot(const client::Snapshot& snapshot, bool json, bool with_hash);
 // One line per contact event (--contacts).
 std::string format_contact_event(const client::ContactEvent& event, bool json);
+// One line per game message received: the payload as text when it is well-formed
+// UTF-8, else as base64 ("base64" in JSON, "(base64)" in text).
+std::string format_game_message(const client::GameMessage& message, bool json);
 std::string format_load_report(const client::LoadReport& report, bool json);
 
 }  // namespace client_app

@@ -6,6 +6,7 @@
 #include <asio.hpp>
 #include <chrono>
 #include <cstdint>
+#include <vector>
 
 #include "client/client.h"
 #include "wire/framing.h"
@@ -49,6 +50,9 @@ struct Client::Held {
   std::uint64_t last_applied_input_tick = 0;
   bool in_sync = true;  // as of the last snapshot that carried a view hash
   bool has_applied_input = false;
+  // The kinematic bodies among those sent (Welcome, Snapshot.added), ascending id:
+  // each snapshot's BodyState::motion comes from it.
+  std::vector<std::uint64_t> kinematic_ids;
 };
 
 }  // namespace client

@@ -96,6 +96,7 @@ void Client::handle_frame(const std::string& frame) {
       held_->predictor =
           wire::Predictor(welcome_.tick_rate, welcome_.gravity.x, welcome_.gravity.y);
       held_->quantum = {welcome_.view.position_precision, welcome_.view.velocity_precision};
+      convert::note_kinematic(held_->kinematic_ids, welcome_.bodies, {});
       state_ = ConnectionState::Connected;
       return;
     case Kind::kSnapshot:
@@ -153,11 +154,8 @@ void Client::on_snapshot(const physics::wire::Snapshot& message, std::size_t wir
   snapshot.records = static_cast<std::size_t>(
       message.quantized().id_gaps_size() + message.velocities().id_gaps_size() +
       message.exact().id_gaps_size() + message.bodies_size());
-  const auto& bodies = held.reconstruction.bodies();
-  snapshot.bodies.reserve(bodies.size());
-  for (const wire::PredictedBody& b : bodies) {
-    snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
-  }
+  convert::note_kinematic(held.kinematic_ids, snapshot.added, snapshot.removed);
+  convert::bodies_held(held.reconstruction, held.kinematic_ids, snapshot.bodies);
   // A full state: the bodies' (full), or the world's itself (the input relay).
   if (message.full() || !message.world_state().empty()) {
     full_state_asked_ = false;

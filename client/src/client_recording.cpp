@@ -23,7 +23,8 @@ std::variant<ClientRecording, std::string> decode(const recording::LoadedRecordi
   wire::Quantum quantum;
   bool has_applied_input = false;
   std::uint64_t last_applied_input_tick = 0;
-  bool in_sync = true;  // as of the last snapshot that carried a view hash
+  bool in_sync = true;                       // as of the last snapshot that carried a view hash
+  std::vector<std::uint64_t> kinematic_ids;  // ascending (convert::note_kinematic)
   std::size_t states = 0;
   for (std::size_t i = 0; i < file.records.size(); ++i) {
     const physics::recording::Record& record = file.records[i];
@@ -45,6 +46,8 @@ std::variant<ClientRecording, std::string> decode(const recording::LoadedRecordi
       predictor =
           wire::Predictor(out.welcome.tick_rate, out.welcome.gravity.x, out.welcome.gravity.y);
       quantum = {out.welcome.view.position_precision, out.welcome.view.velocity_precision};
+      kinematic_ids.clear();
+      convert::note_kinematic(kinematic_ids, out.welcome.bodies, {});
       continue;
     }
     if (message.has_error()) {
@@ -68,8 +71,8 @@ std::variant<ClientRecording, std::string> decode(const recording::LoadedRecordi
     snapshot.records = static_cast<std::size_t>(
         wire_snapshot.quantized().id_gaps_size() + wire_snapshot.velocities().id_gaps_size() +
         wire_snapshot.exact().id_gaps_size() + wire_snapshot.bodies_size());
-    for (const wire::PredictedBody& b : reconstruction.bodies())
-      snapshot.bodies.push_back({b.id, {b.x, b.y}, {b.vx, b.vy}});
+    convert::note_kinematic(kinematic_ids, snapshot.added, snapshot.removed);
+    convert::bodies_held(reconstruction, kinematic_ids, snapshot.bodies);
     if (wire_snapshot.has_view_hash()) in_sync = reconstruction.hash() == wire_snapshot.view_hash();
     snapshot.in_sync = in_sync;
     if (!out.welcome.spectator) {

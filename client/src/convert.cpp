@@ -57,7 +57,39 @@ BodyShape from_wire(const pb::BodyShape& message) {
   shape.name = message.name();
   shape.is_kinematic = message.is_kinematic();
   shape.is_sensor = message.is_sensor();
+  shape.motion = shape.is_static      ? Motion::Static
+                 : shape.is_kinematic ? Motion::Kinematic
+                                      : Motion::Dynamic;
+  shape.velocity = vec(message.velocity());
+  shape.acceleration = vec(message.acceleration());
+  shape.contact_friction = message.contact_friction();
+  if (message.has_category_bits()) shape.filter.category_bits = message.category_bits();
+  if (message.has_mask_bits()) shape.filter.mask_bits = message.mask_bits();
+  shape.filter.group = message.group();
   return shape;
+}
+
+void note_kinematic(std::vector<std::uint64_t>& ids, const std::vector<BodyShape>& added,
+                    const std::vector<std::uint64_t>& removed) {
+  for (const std::uint64_t id : removed) {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    if (it != ids.end() && *it == id) ids.erase(it);
+  }
+  for (const BodyShape& shape : added) {
+    if (shape.motion != Motion::Kinematic) continue;
+    const auto it = std::lower_bound(ids.begin(), ids.end(), shape.body_id);
+    if (it == ids.end() || *it != shape.body_id) ids.insert(it, shape.body_id);
+  }
+}
+
+void bodies_held(const wire::Reconstruction& held, const std::vector<std::uint64_t>& kinematic_ids,
+                 std::vector<BodyState>& out) {
+  out.reserve(held.bodies().size());
+  for (const wire::PredictedBody& b : held.bodies()) {
+    const bool kinematic = std::binary_search(kinematic_ids.begin(), kinematic_ids.end(), b.id);
+    out.push_back(
+        {b.id, {b.x, b.y}, {b.vx, b.vy}, kinematic ? Motion::Kinematic : Motion::Dynamic});
+  }
 }
 
 Welcome from_wire(const pb::Welcome& message) {

@@ -211,7 +211,8 @@ void PlayoutBuffer::fill(double shown) {
     return std::binary_search(still_ids_.begin(), still_ids_.end(), id);
   };
   auto emit = [&](const BodyState& body, Vec2 position, Vec2 velocity) {
-    frame_.bodies.push_back({body.body_id, position, velocity, is_still(body.body_id)});
+    frame_.bodies.push_back(
+        {body.body_id, position, velocity, is_still(body.body_id), body.motion});
   };
 
   const Held& newest = held_.back();

@@ -28,19 +28,42 @@ bool LiveWorld::connect(std::chrono::milliseconds timeout) {
     return false;
   }
   buffer_.emplace(settings);
+  if (!welcome.spectator)
+    pacer_ = std::make_unique<client::InputPacer>(client_, client::PacerConfig{});
   shapes_.reset(welcome.bodies);
   traffic_.clear();
   return true;
 }
 
+std::optional<client::Snapshot> LiveWorld::next_snapshot(std::chrono::milliseconds wait) {
+  if (!pacer_) return client_.next_snapshot(wait);
+  const auto hold_still = [this](std::uint64_t tick) {
+    messages_.send_queued(client_, tick);
+    return client::Vec2{};
+  };
+  return pacer_->poll(std::chrono::steady_clock::now() + wait, hold_still);
+}
+
+std::optional<std::uint64_t> LiveWorld::own_body() const {
+  if (!pacer_) return std::nullopt;
+  return client_.welcome().body_id;
+}
+
+bool LiveWorld::send_game_message(std::string payload) {
+  if (!pacer_) return false;
+  messages_.queue(std::move(payload));
+  return true;
+}
+
 std::size_t LiveWorld::pump(std::chrono::milliseconds wait) {
   std::size_t taken = 0;
-  while (auto snapshot = client_.next_snapshot(taken == 0 ? wait : std::chrono::milliseconds(0))) {
+  while (auto snapshot = next_snapshot(taken == 0 ? wait : std::chrono::milliseconds(0))) {
     shapes_.apply(*snapshot);
     buffer_->push(*snapshot, seconds(snapshot->received_at));
     newest_at_ = snapshot->received_at;
     ++taken;
   }
+  messages_.received(client_.take_game_messages());
   const double t = now();
   traffic_.emplace_back(t, client_.stats().bytes_received);
   while (traffic_.size() > 2 && traffic_[1].first < t - 1.0) traffic_.pop_front();
@@ -87,6 +110,10 @@ std::vector<std::string> LiveWorld::panel(const client::PlayoutFrame& frame,
   lines.push_back(fmt::format("at most {} players; since watching: {} bodies added, {} removed",
                               welcome.max_players, shapes_.joined(), shapes_.left()));
   lines.push_back(shapes_.bodies_line(frame, followed));
+  if (pacer_) lines.push_back(fmt::format("playing: own body {}", welcome.body_id));
+  if (pacer_ || messages_.received_count() > 0) {
+    for (std::string& line : messages_.panel_lines()) lines.push_back(std::move(line));
+  }
   if (!connected()) lines.push_back("disconnected: " + error());
   return lines;
 }

@@ -1,6 +1,9 @@
 #pragma once
 // The world as a spectator sees it: a client connection, the shapes it was sent,
-// and a playout buffer fed with every snapshot as it arrives.
+// and a playout buffer fed with every snapshot as it arrives. Joined as a player
+// (ClientConfig::spectate false) it also sends a zero input every tick, on the
+// client's clock as physics-client does, and the game messages its keys queue just
+// before them.
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -10,7 +13,9 @@
 #include <vector>
 
 #include "client/client.h"
+#include "client/input_pacer.h"
 #include "client/playout_buffer.h"
+#include "game_messages.h"
 #include "world_shapes.h"
 #include "world_source.h"
 
@@ -37,6 +42,9 @@ class LiveWorld : public WorldSource {
   const WorldShapes& shapes() const override { return shapes_; }
   // Takes what arrived (waiting 1 ms at most) and the buffer's frame for `now`.
   const client::PlayoutFrame& update(double now) override;
+  std::optional<std::uint64_t> own_body() const override;
+  bool send_game_message(std::string payload) override;
+  const GameMessages& game_messages() const { return messages_; }
   // Bytes received over the last second or so, in kbit/s.
   double kbits_per_second() const;
   // How old the newest snapshot is (s since it was decoded); 0 when there is none.
@@ -48,8 +56,12 @@ class LiveWorld : public WorldSource {
 
  private:
   double seconds(std::chrono::steady_clock::time_point at) const;
+  // The next snapshot within `wait`: through the pacer when playing.
+  std::optional<client::Snapshot> next_snapshot(std::chrono::milliseconds wait);
 
   client::Client client_;
+  std::unique_ptr<client::InputPacer> pacer_;  // playing only
+  GameMessages messages_;
   std::chrono::steady_clock::time_point start_;
   std::optional<client::PlayoutBuffer> buffer_;
   WorldShapes shapes_;

@@ -40,7 +40,8 @@ int write_screenshot(const ViewerOptions& options, const WorldSource& source,
     return viewer::kExitFailure;
   }
   const auto draw_start = std::chrono::steady_clock::now();
-  viewer::draw_world(canvas.renderer(), camera, source.shapes(), frame, options.follow);
+  viewer::draw_world(canvas.renderer(), camera, source.shapes(), frame, options.follow,
+                     source.own_body());
   if (options.panel) viewer::draw_panel(canvas.renderer(), source.panel(frame, options.follow));
   SDL_RenderFlush(canvas.renderer());
   const double draw_ms =

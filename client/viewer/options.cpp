@@ -102,6 +102,23 @@ std::optional<int> parse_options(int argc, char** argv, ViewerOptions& options) 
       ->check(CLI::Range(1.0 / 64.0, 64.0))
       ->needs(replay);
 
+  std::vector<std::string> key_flags;
+  app.add_option("--key", key_flags,
+                 "Bind a key to a game message, KEY=PAYLOAD (e.g. space=jump); "
+                 "repeatable. Keys: a-z, 0-9, space, return, enter, tab, "
+                 "backspace, up, down, left, right, f1-f12. Joins as a player")
+      ->excludes(replay);
+  std::string key_file;
+  app.add_option("--keys", key_file,
+                 "Bind keys to game messages from FILE: a KEY=PAYLOAD a line, "
+                 "'#' comments. Joins as a player")
+      ->check(CLI::ExistingFile)
+      ->excludes(replay);
+  bool play = false;
+  app.add_flag("--play", play,
+               "Join as a player (a zero input every tick; the own body ringed) instead of "
+               "watching")
+      ->excludes(replay);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -115,6 +132,19 @@ std::optional<int> parse_options(int argc, char** argv, ViewerOptions& options) 
       return kExitUsage;
     }
   }
+  std::string error;
+  if (!key_file.empty() && !read_key_map(key_file, options.keys, error)) {
+    std::fprintf(stderr, "physics-view: --keys: %s\n", error.c_str());
+    return kExitUsage;
+  }
+  for (const std::string& text : key_flags) {
+    std::optional<KeyBinding> binding = parse_key_binding(text, error);
+    if (!binding || !add_binding(options.keys, std::move(*binding), error)) {
+      std::fprintf(stderr, "physics-view: --key: %s\n", error.c_str());
+      return kExitUsage;
+    }
+  }
+  if (play || !options.keys.empty()) options.client.spectate = false;
   std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height);
   if (center.size() == 2) options.center = client::Vec2{center[0], center[1]};
   if (options.follow && *options.follow == 0) options.follow.reset();

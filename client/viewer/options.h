@@ -3,8 +3,10 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "client/client.h"
+#include "key_map.h"
 
 namespace viewer {
 
@@ -30,6 +32,9 @@ struct ViewerOptions {
   // Join as a player and draw the predicting client's render state (its own input
   // shown at once, the others predicted, corrections smoothed).
   bool predict = false;
+  // Keys bound to game messages (--key, --keys); any binding makes the viewer join
+  // as a player (a spectator may not send game messages), as does --play.
+  std::vector<KeyBinding> keys;
 };
 
 // Parses argv. On --help or a bad flag returns the exit code (0 or kExitUsage)

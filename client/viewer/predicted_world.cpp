@@ -18,7 +18,7 @@ client::PredictingClientConfig predicting(client::ClientConfig config) {
   return out;
 }
 
-client::BodyShape shape_of(const phys::BodyState& body) {
+client::BodyShape shape_of(const phys::World& world, const phys::BodyState& body) {
   client::BodyShape shape;
   shape.body_id = body.id.packed();
   shape.shape =
@@ -31,6 +31,8 @@ client::BodyShape shape_of(const phys::BodyState& body) {
   shape.mass = body.mass;
   shape.restitution = body.restitution;
   shape.friction = {body.friction.x, body.friction.y};
+  shape.is_sensor = world.is_sensor(body.id);
+  shape.name = std::string(world.name(body.id));
   return shape;
 }
 
@@ -50,12 +52,21 @@ bool PredictedWorld::connect(std::chrono::milliseconds timeout) {
 }
 
 void PredictedWorld::pump(std::chrono::steady_clock::time_point until) {
-  const auto hold_still = [](std::uint64_t) { return client::Vec2{}; };
+  const auto hold_still = [this](std::uint64_t tick) {
+    messages_.send_queued(client_.connection(), tick);
+    return client::Vec2{};
+  };
   while (!ended_) {
     const client::PollResult polled = client_.poll(until, hold_still);
     if (polled == client::PollResult::Ended) ended_ = true;
     if (polled == client::PollResult::Deadline) break;
   }
+  messages_.received(client_.connection().take_game_messages());
+}
+
+bool PredictedWorld::send_game_message(std::string payload) {
+  messages_.queue(std::move(payload));
+  return true;
 }
 
 void PredictedWorld::learn_shapes() {
@@ -63,7 +74,7 @@ void PredictedWorld::learn_shapes() {
   if (shapes_.all().size() == world.body_count()) return;
   std::vector<client::BodyShape> known = shapes_.list();
   world.for_each_body([&](const phys::BodyState& body) {
-    if (shapes_.find(body.id.packed()) == nullptr) known.push_back(shape_of(body));
+    if (shapes_.find(body.id.packed()) == nullptr) known.push_back(shape_of(world, body));
   });
   shapes_.reset(known);
 }
@@ -106,6 +117,7 @@ std::vector<std::string> PredictedWorld::panel(const client::PlayoutFrame& shown
       "rollbacks {}  re-simulated {}  largest correction {:.3f} m  desyncs {}", stats.rollbacks,
       stats.resimulated_ticks, stats.largest_correction, stats.desyncs));
   lines.push_back(shapes_.bodies_line(shown, followed));
+  for (std::string& line : messages_.panel_lines()) lines.push_back(std::move(line));
   if (ended_) lines.push_back("disconnected: " + error());
   return lines;
 }

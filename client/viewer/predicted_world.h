@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "client/predicting_client.h"
+#include "game_messages.h"
 #include "world_shapes.h"
 #include "world_source.h"
 
@@ -32,6 +33,9 @@ class PredictedWorld : public WorldSource {
   const client::PlayoutFrame& update(double now) override;
   // The render state now, as a frame (the screenshot's).
   const client::PlayoutFrame& frame();
+  std::optional<std::uint64_t> own_body() const override { return client_.core().own_body(); }
+  bool send_game_message(std::string payload) override;
+  const GameMessages& game_messages() const { return messages_; }
   std::vector<std::string> panel(const client::PlayoutFrame& frame,
                                  std::optional<std::uint64_t> followed) const override;
 
@@ -41,6 +45,7 @@ class PredictedWorld : public WorldSource {
 
   client::PredictingClient client_;
   WorldShapes shapes_;
+  GameMessages messages_;
   client::PlayoutFrame frame_;
   bool ended_ = false;
 };

@@ -35,6 +35,14 @@ std::optional<std::uint64_t> next_body(const client::PlayoutFrame& frame,
   return frame.bodies.front().body_id;
 }
 
+// "game keys: space jump  x shoot", the payloads cut to fit a line.
+std::string game_keys_help(const std::vector<KeyBinding>& keys) {
+  std::string line = "game keys:";
+  for (const KeyBinding& binding : keys)
+    line.append("  ").append(binding.name).append(" ").append(binding.payload.substr(0, 24));
+  return line;
+}
+
 }  // namespace
 
 int run_window(const ViewerOptions& options, WorldSource& source, double (*clock)()) {
@@ -102,6 +110,10 @@ int run_window(const ViewerOptions& options, WorldSource& source, double (*clock
           }
           break;
         case SDL_KEYDOWN: {
+          if (const KeyBinding* bound = find_binding(options.keys, event.key.keysym.sym)) {
+            if (event.key.repeat == 0) source.send_game_message(bound->payload);
+            break;
+          }
           if (source.key(event.key.keysym.sym)) break;
           const double step = 0.1 * camera.width / camera.scale;
           switch (event.key.keysym.sym) {
@@ -165,12 +177,13 @@ int run_window(const ViewerOptions& options, WorldSource& source, double (*clock
     }
     frame = &source.update(clock());
     follow(camera, *frame, followed);
-    draw_world(renderer, camera, source.shapes(), *frame, followed);
+    draw_world(renderer, camera, source.shapes(), *frame, followed, source.own_body());
     if (panel) {
       std::vector<std::string> lines = source.panel(*frame, followed);
       lines.push_back(
           "drag/arrows pan  wheel/+- zoom  click/F follow  Esc unfollow  R fit  H panel  Q quit");
       if (!source.keys_help().empty()) lines.push_back(source.keys_help());
+      if (!options.keys.empty()) lines.push_back(game_keys_help(options.keys));
       draw_panel(renderer, lines);
     }
     SDL_RenderPresent(renderer);

@@ -11,6 +11,7 @@ void WorldShapes::reset(const std::vector<client::BodyShape>& bodies) {
   statics_ = 0;
   joined_ = 0;
   left_ = 0;
+  joined_ids_.clear();
   for (const client::BodyShape& body : bodies) {
     if (shapes_.insert_or_assign(body.body_id, body).second && body.is_static) ++statics_;
   }
@@ -23,6 +24,7 @@ void WorldShapes::apply(const client::Snapshot& snapshot) {
       ++statics_;
     } else {
       ++joined_;
+      joined_ids_.insert(body.body_id);
     }
   }
   for (const std::uint64_t id : snapshot.removed) {
@@ -33,6 +35,7 @@ void WorldShapes::apply(const client::Snapshot& snapshot) {
     } else {
       ++left_;
     }
+    joined_ids_.erase(id);
     shapes_.erase(it);
   }
 }

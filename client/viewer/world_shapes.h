@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ class WorldShapes {
   // Dynamic bodies added and removed since reset: players joining and leaving.
   std::uint64_t joined() const { return joined_; }
   std::uint64_t left() const { return left_; }
+  // True for a moving body added by a snapshot (a player who joined after reset).
+  bool joined_later(std::uint64_t id) const { return joined_ids_.count(id) != 0; }
   // The panel's line of body counts for `frame`: "bodies: N dynamic (S still), M static".
   std::string bodies_line(const client::PlayoutFrame& frame,
                           std::optional<std::uint64_t> followed) const;
@@ -34,6 +37,7 @@ class WorldShapes {
   std::size_t statics_ = 0;
   std::uint64_t joined_ = 0;
   std::uint64_t left_ = 0;
+  std::set<std::uint64_t> joined_ids_;
 };
 
 }  // namespace viewer

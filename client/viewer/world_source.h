@@ -25,6 +25,11 @@ class WorldSource {
   virtual bool key(int /*keycode*/) { return false; }
   // The keys of key(), for the panel's help line; empty when none.
   virtual std::string keys_help() const { return {}; }
+  // The body this viewer plays, when it joined as a player: ringed and labelled.
+  virtual std::optional<std::uint64_t> own_body() const { return std::nullopt; }
+  // Queues a game message (a key bound with --key), sent before the next input.
+  // False when this source cannot send one (a spectator, a replay).
+  virtual bool send_game_message(std::string /*payload*/) { return false; }
 };
 
 }  // namespace viewer

@@ -74,8 +74,8 @@ TEST(GoalRush, TwoPlayersJoinAndAThirdIsRefused) {
   const auto right = game.run.join();
   ASSERT_TRUE(left);
   ASSERT_TRUE(right);
-  EXPECT_EQ(game.rules->side_of(*left), Side::Left);
-  EXPECT_EQ(game.rules->side_of(*right), Side::Right);
+  EXPECT_EQ(GoalRushRules::side_of(game.run.world(), *left), Side::Left);
+  EXPECT_EQ(GoalRushRules::side_of(game.run.world(), *right), Side::Right);
   EXPECT_TRUE(game.run.body("left player"));
   EXPECT_TRUE(game.run.body("right player"));
   const auto third = game.run.join();
@@ -90,8 +90,8 @@ TEST(GoalRush, TheBallInAGoalScoresForTheOtherSideAndComesBack) {
   Game game;
   const physics_testing::GameTick* goal = drop_ball_into(game, "left goal");
   ASSERT_NE(goal, nullptr) << "no goal in 2 s";
-  EXPECT_EQ(game.rules->score(Side::Right), 1);
-  EXPECT_EQ(game.rules->score(Side::Left), 0);
+  EXPECT_EQ(GoalRushRules::score(game.run.world(), Side::Right), 1);
+  EXPECT_EQ(GoalRushRules::score(game.run.world(), Side::Left), 0);
   ASSERT_EQ(goal->messages.size(), 1u);
   EXPECT_EQ(goal->messages[0].payload, "score 0 1");
   EXPECT_EQ(goal->messages[0].client, 0u);  // to everyone
@@ -109,7 +109,7 @@ TEST(GoalRush, TheBallInAGoalScoresForTheOtherSideAndComesBack) {
   EXPECT_EQ(after.velocity, (phys::Vec2{0.0, 0.0}));
   // The other goal scores for the other side.
   ASSERT_NE(drop_ball_into(game, "right goal"), nullptr);
-  EXPECT_EQ(game.rules->score(Side::Left), 1);
+  EXPECT_EQ(GoalRushRules::score(game.run.world(), Side::Left), 1);
 }
 
 TEST(GoalRush, FiveGoalsWinAndTheScoresStartAgain) {
@@ -121,7 +121,7 @@ TEST(GoalRush, FiveGoalsWinAndTheScoresStartAgain) {
   ASSERT_FALSE(heard.empty());
   EXPECT_EQ(heard.back(), "win left");
   EXPECT_EQ(heard[heard.size() - 2], "score 5 0");
-  EXPECT_EQ(game.rules->score(Side::Left), 0);
+  EXPECT_EQ(GoalRushRules::score(game.run.world(), Side::Left), 0);
 }
 
 TEST(GoalRush, AShotNeverTouchesItsOwnPlayer) {
@@ -135,7 +135,7 @@ TEST(GoalRush, AShotNeverTouchesItsOwnPlayer) {
   game.run.step();
   const std::optional<phys::BodyId> shot = game.run.find_body("shot");
   ASSERT_TRUE(shot) << "no shot was made";
-  EXPECT_EQ(game.rules->shots_in_flight(), 1u);
+  EXPECT_EQ(GoalRushRules::shots_in_flight(game.run.world()), 1u);
   // It was made inside its player, and flies out of it untouched: no contact, and
   // the player is not pushed.
   const phys::BodyId ground = *game.run.find_body("ground");
@@ -150,11 +150,11 @@ TEST(GoalRush, AShotNeverTouchesItsOwnPlayer) {
   EXPECT_TRUE(hit_the_ground);
   // Shots expire, and at most three fly at once.
   game.run.step(goal_rush::kShotLifeTicks);
-  EXPECT_EQ(game.rules->shots_in_flight(), 0u);
+  EXPECT_EQ(GoalRushRules::shots_in_flight(game.run.world()), 0u);
   EXPECT_FALSE(game.run.find_body("shot"));
   for (int i = 0; i < 4; ++i) ASSERT_TRUE(game.run.message(*shooter, "shoot"));
   game.run.step();
-  EXPECT_EQ(game.rules->shots_in_flight(), goal_rush::kMaxShotsPerPlayer);
+  EXPECT_EQ(GoalRushRules::shots_in_flight(game.run.world()), goal_rush::kMaxShotsPerPlayer);
 }
 
 TEST(GoalRush, APlayerJumpsFromTheGroundOnly) {
@@ -205,6 +205,68 @@ TEST(GoalRush, ThePlatformKeepsToItsPath) {
   EXPECT_EQ(turns, 2);
 }
 
+// Puts the ball at `where`, at rest, before the next tick's rules.
+void place_ball(Game& game, phys::Vec2 where) {
+  game.rules->before_next_tick = [where](server::GameWorld& world) {
+    const phys::BodyId ball = *world.find_body("ball");
+    world.set_position(ball, where);
+    world.set_velocity(ball, {0.0, 0.0});
+  };
+}
+
+// What the rules told `client` during the tick.
+std::vector<std::string> told(const physics_testing::GameTick& tick, server::ClientId client) {
+  std::vector<std::string> out;
+  for (const server::OutgoingGameMessage& m : tick.messages) {
+    if (m.client == client) out.push_back(m.payload);
+  }
+  return out;
+}
+
+// A zap is a ray cast: it passes through its own player and shots, knocks the ball
+// it meets, and stops at the first solid body in its way.
+TEST(GoalRush, AZapKnocksTheBallUnlessSomethingIsInTheWay) {
+  Game game;
+  const auto zapper = game.run.join();  // the left player, facing right
+  ASSERT_TRUE(zapper);
+  game.run.step(30);                                // on the ground
+  place_ball(game, {0.0, 0.6});                     // on the ground too, in line
+  ASSERT_TRUE(game.run.message(*zapper, "shoot"));  // a shot inside the player first
+  ASSERT_TRUE(game.run.message(*zapper, "zap"));
+  const physics_testing::GameTick& knocked = game.run.step();
+  EXPECT_EQ(told(knocked, *zapper), std::vector<std::string>{"zap ball"});
+  EXPECT_GT(game.run.body("ball")->velocity.x, 7.0);  // 4 N s on 0.5 kg: 8 m/s
+
+  // A crate between the player and the ball stops the zap there.
+  place_ball(game, {0.0, 0.6});
+  game.run.step();
+  auto crate = std::make_shared<phys::BodyId>();
+  game.rules->before_next_tick = [crate](server::GameWorld& world) {
+    phys::BodyDef def;
+    def.motion = phys::Motion::Static;
+    def.position = {-4.0, 1.0};
+    def.half_extents = {0.5, 1.0};
+    *crate = world.create(def);
+  };
+  ASSERT_TRUE(game.run.message(*zapper, "zap"));
+  const physics_testing::GameTick& blocked = game.run.step();
+  EXPECT_EQ(told(blocked, *zapper), std::vector<std::string>{"zap blocked"});
+  EXPECT_EQ(game.run.body("ball")->velocity.x, 0.0);
+
+  // The crate gone and the ball up in the air, the zap meets the other player.
+  const auto other = game.run.join();
+  ASSERT_TRUE(other);
+  game.run.step(30);
+  game.rules->before_next_tick = [crate](server::GameWorld& world) {
+    world.destroy(*crate);
+    const phys::BodyId ball = *world.find_body("ball");
+    world.set_position(ball, {0.0, 12.0});
+  };
+  ASSERT_TRUE(game.run.message(*zapper, "zap"));
+  const physics_testing::GameTick& met = game.run.step();
+  EXPECT_EQ(told(met, *zapper), std::vector<std::string>{"zap player"});
+}
+
 // The same joins, inputs and messages give the same world, tick for tick.
 TEST(GoalRush, TheSamePlayGivesTheSameHashes) {
   const auto play = [] {
@@ -229,6 +291,44 @@ TEST(GoalRush, TheSamePlayGivesTheSameHashes) {
   const std::vector<std::uint64_t> first = play();
   EXPECT_EQ(first.size(), 240u);
   EXPECT_EQ(first, play());
+}
+
+// What the rules keep between ticks is in the world: a fresh rules object before
+// every tick plays the same game (seats, facing, scores, shots and their expiry).
+TEST(GoalRush, TheRulesKeepTheirStateInTheWorld) {
+  const scene::SceneDef scene = goal_rush_scene();
+  const auto script = [](GameRun& run, std::uint64_t tick) {
+    if (tick == 1 || tick == 2 || tick == 230) {
+      ASSERT_TRUE(run.join());
+    }
+    if (tick == 200) {
+      ASSERT_TRUE(run.leave(1));
+    }
+    // The ball dropped over a goal now and then: goals and scores.
+    if (tick == 20 || tick == 120 || tick == 260) {
+      const phys::BodyId ball = *run.find_body("ball");
+      ASSERT_TRUE(run.set_position(ball, tick == 120 ? 14.0 : -14.0, 5.0));
+      ASSERT_TRUE(run.set_velocity(ball, 0.0, 0.0));
+    }
+    for (const auto& [client, body] : run.simulation().room().members()) {
+      const double ax = (tick / 25 + client) % 2 == 0 ? 20.0 : -20.0;
+      ASSERT_TRUE(run.input(client, ax, 0.0));
+      if ((tick + client * 7) % 30 == 0) {
+        ASSERT_TRUE(run.message(client, "shoot"));
+      }
+      if ((tick + client * 11) % 45 == 0) {
+        ASSERT_TRUE(run.message(client, "jump"));
+      }
+      if ((tick + client * 5) % 70 == 0) {
+        ASSERT_TRUE(run.message(client, "zap"));
+      }
+    }
+  };
+  const auto rules = [&scene] { return std::make_shared<GoalRushRules>(scene.player); };
+  const auto check = physics_testing::check_rules_state_in_world(scene, rules, script, 320);
+  ASSERT_TRUE(check) << check.message();
+  // It played: goals were scored and shots were made and expired.
+  EXPECT_GE(check->messages, 3u);
 }
 
 // Over the network: a shot asked for by a client reaches every client as a new body,

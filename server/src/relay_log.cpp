@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <vector>
 
 namespace server {
 
@@ -67,6 +68,12 @@ void RelayLog::set(phys::BodyId id, std::optional<phys::Vec2> position,
   if (position) set_vec2(*set.mutable_position(), *position);
   if (velocity) set_vec2(*set.mutable_velocity(), *velocity);
   if (acceleration) set_vec2(*set.mutable_acceleration(), *acceleration);
+}
+
+void RelayLog::game_state(const phys::GameState& state) {
+  std::vector<std::uint8_t> bytes;
+  state.append_bytes(bytes);
+  next_change_slot().set_game_state(bytes.data(), bytes.size());
 }
 
 void RelayLog::applied(std::uint64_t tick, phys::BodyId body, phys::Vec2 acceleration) {

@@ -177,7 +177,7 @@ void Server::Impl::on_closing(Session& session, DropReason reason) {
 void Server::Impl::on_closed(Session& session, DropReason reason) {
   const std::uint32_t id = session.id();
   feeds_.leave(id);
-  relay_cursors_.erase(id);  // a subscription made by a Hello that then failed, too
+  forget_relay_client(id);
   if (!session.joined() && is_failed_hello(reason)) {
     address_limits_.on_failed_hello(session.address(), std::chrono::steady_clock::now());
     update_stats([](ServerStats& s) { ++s.failed_hellos; });

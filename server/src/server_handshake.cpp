@@ -17,13 +17,9 @@
 namespace server {
 
 void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello) {
+  session.set_wants_world(hello.want_world());
   // An address whose players were dropped for straggling or not reading waits
   // before it takes a seat again (address_limits.h).
-  if (hello.want_world() && !relay_attached_) {
-    simulation_.relay_to(&relay_log_);
-    relay_attached_ = true;
-  }
-  session.set_wants_world(hello.want_world());
   if (!session.joined() && !hello.spectate()) {
     const auto wait =
         address_limits_.seat_wait(session.address(), std::chrono::steady_clock::now());
@@ -100,8 +96,22 @@ void Server::Impl::give_world(Session& session, const wire::ViewSettings& view,
   const std::vector<std::uint8_t> bytes = simulation_.world().to_bytes();
   welcome.mutable_welcome()->set_world_state(bytes.data(), bytes.size());
   if (view.encoding == physics::wire::ENCODING_INPUTS) {
+    // The relay is attached only while a welcomed client follows it: the Simulation
+    // pays a state hash per tick for it, and the log only holds what such clients need.
+    if (relay_cursors_.empty()) simulation_.relay_to(&relay_log_);
     relay_cursors_[session.id()] = {simulation_.current_tick(), relay_log_.next_change(), false};
+    update_stats([&](ServerStats& s) { s.relay_clients = relay_cursors_.size(); });
   }
+}
+
+void Server::Impl::forget_relay_client(ClientId client) {
+  if (relay_cursors_.erase(client) == 0) return;
+  if (relay_cursors_.empty()) {
+    simulation_.relay_to(nullptr);
+    // Ticks logged before the gap would not be consecutive with the ticks after it.
+    relay_log_ = RelayLog{};
+  }
+  update_stats([&](ServerStats& s) { s.relay_clients = relay_cursors_.size(); });
 }
 
 // Every seat is taken: the handshake makes the bodies in seat order; every player

@@ -112,6 +112,8 @@ class Server::Impl final : public SessionHost {
   // A relay client's snapshot bytes: the ticks since the previous one, or the
   // world's state when asked for or when the relay no longer holds its ticks.
   std::string relay_bytes(RelayCursor& cursor, std::uint64_t tick, std::uint32_t hash_interval);
+  // A relay client left: the relay is detached (and its log emptied) with the last.
+  void forget_relay_client(ClientId client);
 
   template <typename Update>
   void update_stats(Update&& update) {
@@ -142,10 +144,10 @@ class Server::Impl final : public SessionHost {
   LockstepGate gate_;
   SnapshotFeeds feeds_;
   TruthFrame previous_frame_;
-  // The input relay (relay_log.h): attached to the simulation when the first client
-  // asks for the world, so that a server without such clients pays nothing for it.
+  // The input relay (relay_log.h): attached to the simulation while a welcomed client
+  // follows it (give_world, forget_relay_client), so that a server without such
+  // clients pays nothing for it.
   RelayLog relay_log_;
-  bool relay_attached_ = false;
   std::map<std::uint32_t, RelayCursor> relay_cursors_;
 
   std::map<std::uint32_t, std::shared_ptr<Session>> sessions_;

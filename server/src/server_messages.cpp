@@ -63,7 +63,7 @@ void Server::Impl::on_message(Session& session, physics::wire::ClientMessage& me
                   .reason = to_string(DropReason::ClientBye)},
                  "client {} says bye: {}", session.id(), printable_name(message.bye().reason()));
       }
-      session.close_now(DropReason::ClientBye);
+      session.close_when_written(DropReason::ClientBye);
       return;
     case Kind::KIND_NOT_SET:
       break;

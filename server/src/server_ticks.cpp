@@ -185,6 +185,7 @@ TickResult Server::Impl::run_one_tick(
     s.view_updates = feed.views_updated;
     s.views = feeds_.view_count();
     s.max_view_error = feed.max_position_error;
+    s.relay_ticks_held = relay_log_.ticks_held();
   });
   const std::uint64_t state_hash = frame.state_hash;
   previous_frame_ = std::move(frame);

@@ -149,7 +149,7 @@ void Session::handle_frames() {
         close_with_error(physics::wire::ERROR_MALFORMED, frame, DropReason::Malformed);
         return;
       case Framing::Status::PeerClosed:
-        close_after_reply(DropReason::Disconnected);
+        close_when_written(DropReason::Disconnected);
         return;
       case Framing::Status::Message:
         flush_output();
@@ -231,7 +231,11 @@ void Session::enqueue(Outgoing item) {
 void Session::do_write() {
   if (in_flight_ || closed_) return;
   if (queue_.empty()) {
-    if (closing_ && !draining_) begin_draining();
+    if (closing_ && finish_when_written_) {
+      finish(close_reason_);
+    } else if (closing_ && !draining_) {
+      begin_draining();
+    }
     return;
   }
   in_flight_ = std::make_unique<Outgoing>(std::move(queue_.front()));
@@ -268,15 +272,7 @@ void Session::do_write() {
 void Session::close_with_error(physics::wire::ErrorCode code, const std::string& text,
                                DropReason reason) {
   if (closing_ || closed_) return;
-  // Waiting snapshots are of no use to a client that is being closed.
-  for (auto it = queue_.begin(); it != queue_.end();) {
-    if (it->snapshot) {
-      it = queue_.erase(it);
-      --waiting_snapshots_;
-    } else {
-      ++it;
-    }
-  }
+  drop_waiting_snapshots();
   Outgoing item;
   // Before a WebSocket's upgrade, there is no frame to put an Error in.
   if (framing_->open()) item.bytes = encode(wire::make_error(code, text, true));
@@ -293,14 +289,29 @@ void Session::close_with_error(physics::wire::ErrorCode code, const std::string&
   announce_closing(reason);
 }
 
-void Session::close_after_reply(DropReason reason) {
+void Session::drop_waiting_snapshots() {
+  // Waiting snapshots are of no use to a client that is being closed.
+  for (auto it = queue_.begin(); it != queue_.end();) {
+    if (it->snapshot) {
+      it = queue_.erase(it);
+      --waiting_snapshots_;
+    } else {
+      ++it;
+    }
+  }
+}
+
+void Session::close_when_written(DropReason reason) {
   if (closing_ || closed_) return;
+  drop_waiting_snapshots();
   closing_ = true;
   close_reason_ = reason;
+  finish_when_written_ = true;
   close_deadline_ = clock::now() + limits_.close_linger;
+  announce_closing(reason);
+  framing_->close();
   flush_output();
   do_write();
-  announce_closing(reason);
 }
 
 void Session::announce_closing(DropReason reason) {

@@ -90,8 +90,13 @@ class Session : public std::enable_shared_from_this<Session> {
   // Sends a fatal Error, stops reading, closes once it is written (or after
   // close_linger at the latest).
   void close_with_error(physics::wire::ErrorCode code, const std::string& text, DropReason reason);
-  // Closes quietly (Bye, or the peer is gone).
+  // Closes quietly (the peer is gone, or cannot be written to).
   void close_now(DropReason reason);
+  // Closes once the framing's goodbye (a WebSocket close frame; nothing on TCP) is
+  // written, dropping waiting snapshots and reading nothing more: a Bye, or the
+  // peer's own close frame answered. The peer has said it is done, so the socket
+  // closes without waiting for its side (RFC 6455 7.1.1: the server closes first).
+  void close_when_written(DropReason reason);
 
   // Enforces idle_timeout and close_linger; the server calls it periodically.
   void check_deadlines(clock::time_point now);
@@ -155,9 +160,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void handle_frames();
   // Queues what the framing wrote on its own (a WebSocket's upgrade reply, pongs).
   void flush_output();
-  // The peer closed its side cleanly (a WebSocket close frame): write the framing's
-  // reply, then close as after an Error.
-  void close_after_reply(DropReason reason);
+  void drop_waiting_snapshots();
   std::string encode(const physics::wire::ServerMessage& message) const;
   void enqueue(Outgoing item);
   void do_write();
@@ -186,6 +189,7 @@ class Session : public std::enable_shared_from_this<Session> {
   std::deque<Outgoing> queue_;  // waiting to be written
   bool reading_ = false;
   bool draining_ = false;              // closing: Error written, FIN sent, discarding input
+  bool finish_when_written_ = false;   // closing: close the socket once queue_ is written
   std::size_t waiting_snapshots_ = 0;  // snapshots in queue_
   bool joined_ = false;
   bool closing_ = false;

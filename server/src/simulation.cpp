@@ -89,6 +89,11 @@ Admission Simulation::admit(ClientId client, std::optional<std::uint32_t> seat) 
   note_added(*body, made);
   if (recorder_) recorder_->joined(current_tick_, client, *body, seat);
   admission.body = body;
+  if (rules_) {
+    GameWorld handle(*this);
+    rules_->on_joined(handle, client, *body);
+    relay_game_state();
+  }
   return admission;
 }
 
@@ -104,6 +109,7 @@ bool Simulation::leave(ClientId client) {
     rules_tick_ = current_tick_;
     GameWorld handle(*this);
     rules_->on_leave(handle, client);
+    relay_game_state();
   }
   return true;
 }
@@ -193,6 +199,7 @@ TickResult Simulation::step_tick() {
     rules_tick_ = result.tick;
     if (relay_) relay_->begin_rules(RelayLog::RulesPhase::BeforeStep);
     GameWorld handle(*this);
+    fire_timers(handle, result.tick);
     rules_->before_step(handle, applied);
     if (relay_) relay_->end_rules();
     delivering_.clear();
@@ -203,6 +210,7 @@ TickResult Simulation::step_tick() {
     if (relay_) relay_->begin_rules(RelayLog::RulesPhase::AfterStep);
     GameWorld handle(*this);
     rules_->after_step(handle);
+    relay_game_state();
     if (relay_) relay_->end_rules();
   }
   if (recorder_) recorder_->stepped(result.tick, world_);
@@ -234,6 +242,33 @@ bool Simulation::file_recorded_game_message(ClientId client, std::uint64_t tick,
 const ClientInputs* Simulation::inputs_of(ClientId client) const {
   const auto it = inputs_.find(client);
   return it == inputs_.end() ? nullptr : &it->second;
+}
+
+void Simulation::fire_timers(GameWorld& handle, std::uint64_t tick) {
+  phys::GameState& state = world_.game_state();
+  for (const phys::GameKey& key : state.timers_due(tick)) {
+    // An earlier timer's rule may have cancelled this one, or started it again later.
+    const std::optional<phys::GameTimer> timer = state.timer(key.name, key.index);
+    if (!timer || timer->due > tick) continue;
+    state.fired(key, tick);
+    rules_->on_timer(handle, key.name, key.index);
+  }
+}
+
+void Simulation::relay_game_state() {
+  if (!relay_ || world_.game_state() == relayed_game_state_) return;
+  relay_->game_state(world_.game_state());
+  relayed_game_state_ = world_.game_state();
+}
+
+void Simulation::replace_rules(std::shared_ptr<GameRules> rules) {
+  rules_ = std::move(rules);
+  set_contact_events(world_.contact_events_on());
+}
+
+GameWorld Simulation::world_handle() {
+  rules_tick_ = current_tick_;
+  return GameWorld(*this);
 }
 
 BodyChanges Simulation::take_changes() { return std::exchange(changes_, BodyChanges{}); }

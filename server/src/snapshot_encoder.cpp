@@ -1,5 +1,7 @@
 #include "snapshot_encoder.h"
 
+#include <bit>
+
 #include "wire/framing.h"
 #include "wire/messages.h"
 
@@ -8,6 +10,12 @@ namespace {
 
 // ServerMessage.snapshot is field 2, length-delimited: (2 << 3) | 2.
 constexpr char kSnapshotFieldTag = 0x12;
+
+// +0.0 in both: what an absent Vec2 reads as. A -0.0 is sent, since the state hash
+// tells it apart.
+bool all_bits_zero(phys::Vec2 v) {
+  return std::bit_cast<std::uint64_t>(v.x) == 0 && std::bit_cast<std::uint64_t>(v.y) == 0;
+}
 
 }  // namespace
 
@@ -29,6 +37,15 @@ void fill_body_shape(const phys::BodyState& body, physics::wire::BodyShape& shap
   shape.mutable_friction()->set_x(body.friction.x);
   shape.mutable_friction()->set_y(body.friction.y);
   shape.set_is_kinematic(body.motion == phys::Motion::Kinematic);
+  if (!all_bits_zero(body.velocity)) {
+    shape.mutable_velocity()->set_x(body.velocity.x);
+    shape.mutable_velocity()->set_y(body.velocity.y);
+  }
+  if (!all_bits_zero(body.acceleration)) {
+    shape.mutable_acceleration()->set_x(body.acceleration.x);
+    shape.mutable_acceleration()->set_y(body.acceleration.y);
+  }
+  shape.set_contact_friction(body.contact_friction);
 }
 
 void fill_body_shape(const phys::BodyState& body, const phys::World& world,
@@ -36,6 +53,15 @@ void fill_body_shape(const phys::BodyState& body, const phys::World& world,
   fill_body_shape(body, shape);
   shape.set_name(std::string(world.name(body.id)));
   shape.set_is_sensor(world.is_sensor(body.id));
+  // The filter's fields only where they are not phys::Filter's defaults, as
+  // RelayBody sends them: a scene without filters pays nothing for them.
+  const phys::Filter filter = world.filter(body.id).value_or(phys::Filter{});
+  const phys::Filter defaults;
+  if (filter.category_bits != defaults.category_bits) {
+    shape.set_category_bits(filter.category_bits);
+  }
+  if (filter.mask_bits != defaults.mask_bits) shape.set_mask_bits(filter.mask_bits);
+  shape.set_group(filter.group);
 }
 
 std::string snapshot_frame_header(std::size_t snapshot_bytes) {

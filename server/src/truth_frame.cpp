@@ -16,7 +16,8 @@ TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthF
   frame.state_hash = world.state_hash();
   frame.bodies.reserve(world.dynamic_body_count());
   world.for_each_body([&](const phys::BodyState& body) {
-    if (body.motion != phys::Motion::Dynamic) return;
+    // A static body never moves by itself; a kinematic one does, every tick.
+    if (body.motion == phys::Motion::Static) return;
     TruthBody t;
     t.id = body.id.packed();
     t.x = body.position.x;
@@ -24,6 +25,7 @@ TruthFrame read_truth(const phys::World& world, std::uint64_t tick, const TruthF
     t.vx = body.velocity.x;
     t.vy = body.velocity.y;
     t.awake = body.awake;
+    t.kinematic = body.motion == phys::Motion::Kinematic;
     frame.bodies.push_back(t);
   });
   // The world walks its slots in index order, and a packed id puts the slot's

@@ -1,6 +1,7 @@
 #pragma once
-// The world after a tick as the snapshot side reads it: every dynamic body's exact
-// state, in ascending id, read from the world once per tick and shared by every
+// The world after a tick as the snapshot side reads it: every moving body's exact
+// state (dynamic and kinematic: the bodies whose state a tick can change), in
+// ascending id, read from the world once per tick and shared by every
 // view. A body's state a tick before lets a view see which predictor would have
 // carried it over the last tick.
 #include <cstdint>
@@ -18,6 +19,8 @@ struct TruthBody {
   double vx = 0.0;
   double vy = 0.0;
   bool awake = true;
+  // Moved by its velocity alone (Motion::Kinematic): the Glide predictor carries it.
+  bool kinematic = false;
   // The state one tick before (equal to this one for a body new this tick).
   double previous_x = 0.0;
   double previous_y = 0.0;
@@ -28,7 +31,7 @@ struct TruthBody {
 struct TruthFrame {
   std::uint64_t tick = 0;
   std::uint64_t state_hash = 0;
-  std::vector<TruthBody> bodies;  // dynamic bodies, ascending id
+  std::vector<TruthBody> bodies;  // dynamic and kinematic bodies, ascending id
   // The tick's contact events (while the world produces them), step set to `tick`.
   std::vector<phys::ContactEvent> contact_events;
   // The tick's sensor events (always produced), step set to `tick`.

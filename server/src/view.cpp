@@ -73,11 +73,14 @@ double miss(const wire::Predictor& predictor, const TruthBody& t, PredictorMode 
 }
 
 // The predictor that should carry the body from here: the server's choice, told
-// to the client in the record (the client never guesses). A body keeps its mode
+// to the client in the record (the client never guesses). A dynamic body keeps its mode
 // unless another would have predicted the last tick clearly better (by half), so
 // that bodies jostling in a pile do not pay a mode change with every record.
 PredictorMode choose_mode(const wire::Predictor& predictor, const TruthBody& t,
                           PredictorMode current, double pos_tol, double vel_tol) {
+  // A kinematic body moves by its velocity alone, awake or not (it never sleeps):
+  // Glide carries it, and gravity (Ballistic) never acts on it.
+  if (t.kinematic) return PredictorMode::Glide;
   if (!t.awake) return PredictorMode::Hold;
   PredictorMode best = current;
   double best_miss = miss(predictor, t, current, pos_tol, vel_tol);

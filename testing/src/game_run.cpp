@@ -69,6 +69,32 @@ Outcome GameRun::message(server::ClientId client, std::string payload) {
                           " was refused: " + describe(verdict));
 }
 
+Expected<phys::BodyId> GameRun::add_body(const phys::BodyDef& def) {
+  phys::BodyDefError error = phys::BodyDefError::None;
+  const phys::BodyId id = simulation_.world_handle().create(def, &error);
+  if (id.is_valid()) return id;
+  return Expected<phys::BodyId>::failure("the world refused the body: " +
+                                         std::string(phys::describe(error)));
+}
+
+Outcome GameRun::remove_body(phys::BodyId id) {
+  if (simulation_.world_handle().destroy(id)) return Outcome::success();
+  return Outcome::failure("no body " + std::to_string(id.packed()) +
+                          " to remove, or it is a player's (players leave instead)");
+}
+
+Outcome GameRun::set_position(phys::BodyId id, double x, double y) {
+  if (simulation_.world_handle().set_position(id, {x, y})) return Outcome::success();
+  return Outcome::failure("no body " + std::to_string(id.packed()) +
+                          " to move there (unknown, static, or a value the world refuses)");
+}
+
+Outcome GameRun::set_velocity(phys::BodyId id, double vx, double vy) {
+  if (simulation_.world_handle().set_velocity(id, {vx, vy})) return Outcome::success();
+  return Outcome::failure("no body " + std::to_string(id.packed()) +
+                          " to set moving (unknown, static, or a value the world refuses)");
+}
+
 const GameTick& GameRun::step(std::uint64_t ticks) {
   const std::uint64_t count = ticks == 0 ? 1 : ticks;
   for (std::uint64_t i = 0; i < count; ++i) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <functional>
 #include <string>
 #include <thread>
 
@@ -23,9 +24,8 @@ std::string hex(std::uint64_t value) {
 }
 
 // Checks that `clients` are lockstep players joined at one tick with exact views
-// and the state hash, and adds their bodies to `reference`, which must give the
-// same ids. Returns the tick they joined at.
-Expected<std::uint64_t> prepare_reference(const Clients& clients, ReferenceRun& reference) {
+// and the state hash. Returns the tick they joined at.
+Expected<std::uint64_t> check_clients(const Clients& clients) {
   if (clients.empty()) return Expected<std::uint64_t>::failure("no clients to drive");
   const std::uint64_t start_tick = clients.front()->welcome().current_tick;
   for (std::size_t k = 0; k < clients.size(); ++k) {
@@ -47,6 +47,15 @@ Expected<std::uint64_t> prepare_reference(const Clients& clients, ReferenceRun& 
                                               std::to_string(welcome.current_tick) + ")");
     }
   }
+  return start_tick;
+}
+
+// check_clients, then adds their bodies to `reference`, which must give the same
+// ids. Returns the tick they joined at.
+Expected<std::uint64_t> prepare_reference(const Clients& clients, ReferenceRun& reference) {
+  const Expected<std::uint64_t> checked = check_clients(clients);
+  if (!checked) return checked;
+  const std::uint64_t start_tick = *checked;
   // The server adds bodies one after another, so their ids ascend in join order; the
   // reference adds them in the same order and must get the same ids.
   reference.advance_to(start_tick);
@@ -71,17 +80,21 @@ Expected<std::uint64_t> prepare_reference(const Clients& clients, ReferenceRun& 
   return start_tick;
 }
 
-}  // namespace
+// The in-process side of a lockstep comparison: client k's input at a tick, then
+// one tick stepped, giving its state hash.
+struct InProcessSide {
+  std::function<void(std::size_t client, std::uint64_t tick, client::Vec2 a)> input;
+  std::function<std::uint64_t()> step;
+};
 
-Expected<LockstepRun> compare_lockstep_run(const scene::SceneDef& scene, const Clients& clients,
-                                           const InputScript& script, std::uint64_t ticks,
-                                           std::chrono::milliseconds snapshot_timeout) {
-  ReferenceRun reference(scene);
-  const Expected<std::uint64_t> start = prepare_reference(clients, reference);
-  if (!start) return fail(start.message());
+// Sends each client its script's inputs tick by tick and holds every client's
+// snapshot of each tick to the in-process side's hash.
+Expected<LockstepRun> drive_lockstep(const Clients& clients, const InputScript& script,
+                                     std::uint64_t ticks,
+                                     std::chrono::milliseconds snapshot_timeout,
+                                     std::uint64_t start_tick, const InProcessSide& reference) {
   LockstepRun run;
-  run.start_tick = *start;
-
+  run.start_tick = start_tick;
   for (std::uint64_t i = 1; i <= ticks; ++i) {
     const std::uint64_t tick = run.start_tick + i;
     for (std::size_t k = 0; k < clients.size(); ++k) {
@@ -90,7 +103,7 @@ Expected<LockstepRun> compare_lockstep_run(const scene::SceneDef& scene, const C
         return fail("client " + std::to_string(k) + " could not send its input for tick " +
                     std::to_string(tick) + ": " + clients[k]->last_error().to_string());
       }
-      reference.set_input(clients[k]->welcome().body_id, a.x, a.y);
+      reference.input(k, tick, a);
     }
     const std::uint64_t expected = reference.step();
     for (std::size_t k = 0; k < clients.size(); ++k) {
@@ -113,6 +126,67 @@ Expected<LockstepRun> compare_lockstep_run(const scene::SceneDef& scene, const C
     run.hashes.push_back(expected);
   }
   return run;
+}
+
+// check_clients, and a Simulation with the game's rules
+// stepped to their tick with their bodies, which must get the server's ids.
+Expected<std::uint64_t> prepare_game(const Clients& clients, server::Simulation& reference) {
+  const Expected<std::uint64_t> checked = check_clients(clients);
+  if (!checked) return checked;
+  const std::uint64_t start_tick = *checked;
+  while (reference.current_tick() < start_tick) reference.step_tick();
+  std::vector<const client::Client*> by_body;
+  for (const auto& c : clients) by_body.push_back(c.get());
+  std::sort(by_body.begin(), by_body.end(), [](const client::Client* a, const client::Client* b) {
+    return a->welcome().body_id < b->welcome().body_id;
+  });
+  for (const client::Client* c : by_body) {
+    const server::Admission admission = reference.admit(c->welcome().client_id);
+    if (!admission.body) {
+      return Expected<std::uint64_t>::failure(
+          "the in-process game did not let client " + std::to_string(c->welcome().client_id) +
+          " in: " + admission.refused.value_or("no free spawn point"));
+    }
+    if (admission.body->packed() != c->welcome().body_id) {
+      return Expected<std::uint64_t>::failure(
+          "the in-process game gave body " + std::to_string(admission.body->packed()) +
+          " where the server gave " + std::to_string(c->welcome().body_id));
+    }
+  }
+  return start_tick;
+}
+
+}  // namespace
+
+Expected<LockstepRun> compare_lockstep_run(const scene::SceneDef& scene, const Clients& clients,
+                                           const InputScript& script, std::uint64_t ticks,
+                                           std::chrono::milliseconds snapshot_timeout) {
+  ReferenceRun reference(scene);
+  const Expected<std::uint64_t> start = prepare_reference(clients, reference);
+  if (!start) return fail(start.message());
+  const InProcessSide side{[&](std::size_t k, std::uint64_t /*tick*/, client::Vec2 a) {
+                             reference.set_input(clients[k]->welcome().body_id, a.x, a.y);
+                           },
+                           [&] { return reference.step(); }};
+  return drive_lockstep(clients, script, ticks, snapshot_timeout, *start, side);
+}
+
+Expected<LockstepRun> compare_lockstep_run(const scene::SceneDef& scene, const RulesFactory& rules,
+                                           const Clients& clients, const InputScript& script,
+                                           std::uint64_t ticks,
+                                           std::chrono::milliseconds snapshot_timeout) {
+  server::Simulation reference(scene, {}, rules());
+  const Expected<std::uint64_t> start = prepare_game(clients, reference);
+  if (!start) return fail(start.message());
+  const InProcessSide side{
+      [&](std::size_t k, std::uint64_t tick, client::Vec2 a) {
+        reference.submit_input(clients[k]->welcome().client_id, tick, {a.x, a.y});
+      },
+      [&] {
+        reference.step_tick();
+        return reference.world().state_hash();
+      }};
+  return drive_lockstep(clients, script, ticks, snapshot_timeout, *start, side);
 }
 
 Expected<PacedLockstepRun> run_paced_lockstep(const scene::SceneDef& scene, const Clients& clients,

@@ -5,7 +5,9 @@
 // OUT_DIR/client/ (a server's byte stream: Welcome, Snapshots, Error, Pong),
 // OUT_DIR/snapshot/ (setup doubles, then delimited Snapshots), OUT_DIR/scene/ (the
 // small scene files of SCENES_DIR), OUT_DIR/replay/ (a server recording of a
-// short run, as physics-server --record writes one).
+// short run, as physics-server --record writes one), OUT_DIR/world_bytes/ (the bytes
+// of the small worlds of world_seeds.h), OUT_DIR/relay_follow/ (relayed ticks,
+// relay_follow_target.h).
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "recording/recording_file.h"
+#include "relay_follow_target.h"
 #include "scene/scene.h"
 #include "server/recorded_scene.h"
 #include "server/simulation.h"
@@ -25,6 +28,7 @@
 #include "wire/framing.h"
 #include "wire/messages.h"
 #include "wire/view_settings.h"
+#include "world_seeds.h"
 
 namespace fs = std::filesystem;
 
@@ -238,6 +242,19 @@ void replay_seeds(const fs::path& dir) {
   write_file(dir / "header_only", recording::encode_recording(header, {}));
 }
 
+void world_bytes_seeds(const fs::path& dir) {
+  for (const auto& [name, bytes] : fuzz_seeds::world_seeds()) {
+    write_file(dir / name, std::string(bytes.begin(), bytes.end()));
+  }
+}
+
+void relay_follow_seeds(const fs::path& dir) {
+  const std::vector<std::string> seeds = relay_fuzz::make_seeds();
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    write_file(dir / ("relay_" + std::to_string(i)), seeds[i]);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -251,5 +268,7 @@ int main(int argc, char** argv) {
   snapshot_seeds(out / "snapshot");
   scene_seeds(out / "scene", argv[2]);
   replay_seeds(out / "replay");
+  world_bytes_seeds(out / "world_bytes");
+  relay_follow_seeds(out / "relay_follow");
   return 0;
 }

@@ -32,6 +32,20 @@ expect_usage_error("client --port 99999" "1 to 65535" ${CLIENT} --port 99999)
 expect_usage_error("client --bogus" "bogus" ${CLIENT} --bogus)
 expect_usage_error("client --seat -1" "--seat" ${CLIENT} --seat -1)
 expect_usage_error("client --accel nan,0" "finite" ${CLIENT} --accel nan,0)
+string(REPEAT "x" 257 long_payload)
+expect_usage_error("client --game-message of 257 bytes" "at most 256 bytes; this one has 257"
+                   ${CLIENT} --game-message ${long_payload})
+expect_usage_error("client 5 game messages" "at most 4 game messages" ${CLIENT}
+                   --game-message a --game-message b --game-message c --game-message d
+                   --game-message e)
+expect_usage_error("client --message-every-ms 0" "--message-every-ms: Value 0 not in range"
+                   ${CLIENT} --game-message a --message-every-ms 0)
+expect_usage_error("client --message-every-ms -5" "--message-every-ms" ${CLIENT}
+                   --game-message a --message-every-ms -5)
+expect_usage_error("client --message-every-ms alone" "requires --game-message" ${CLIENT}
+                   --message-every-ms 100)
+expect_usage_error("client --game-message --spectate" "excludes" ${CLIENT} --spectate
+                   --game-message a)
 
 # --help says how --max-clients and the scene's room go together, and names the
 # lockstep lobby flags.

@@ -54,8 +54,9 @@ void check_rounding(const physics::wire::Snapshot& snapshot, const wire::Reconst
 
 }  // namespace
 
-FeedRun::FeedRun(scene::SceneDef scene, bool lockstep, std::uint64_t heartbeat)
-    : sim_(std::move(scene)),
+FeedRun::FeedRun(scene::SceneDef scene, bool lockstep, std::uint64_t heartbeat,
+                 std::shared_ptr<server::GameRules> rules)
+    : sim_(std::move(scene), {}, std::move(rules)),
       predictor_(sim_.tick_rate(), sim_.world().settings().gravity.x,
                  sim_.world().settings().gravity.y),
       feeds_(predictor_, heartbeat, lockstep) {}
@@ -65,6 +66,15 @@ FakeClient& FeedRun::join(const wire::ViewSettings& settings) {
   const auto body = sim_.join(id);
   EXPECT_TRUE(body.has_value()) << "no spawn point for client " << id;
   feeds_.join(id, settings, body ? std::optional<std::uint64_t>(body->packed()) : std::nullopt);
+  FakeClient& c = clients_[id];
+  c.id = id;
+  c.settings = settings;
+  return c;
+}
+
+FakeClient& FeedRun::spectate(const wire::ViewSettings& settings) {
+  const server::FeedClient id = next_id_++;
+  feeds_.join(id, settings, std::nullopt);
   FakeClient& c = clients_[id];
   c.id = id;
   c.settings = settings;

@@ -9,9 +9,11 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "server/game_rules.h"
 #include "server/simulation.h"
 #include "snapshot_feeds.h"
 #include "truth_frame.h"
@@ -36,10 +38,13 @@ struct FakeClient {
 
 class FeedRun {
  public:
-  explicit FeedRun(scene::SceneDef scene, bool lockstep = false, std::uint64_t heartbeat = 60);
+  explicit FeedRun(scene::SceneDef scene, bool lockstep = false, std::uint64_t heartbeat = 60,
+                   std::shared_ptr<server::GameRules> rules = nullptr);
 
   // Joins a client with these settings (its body from the scene's spawn points).
   FakeClient& join(const wire::ViewSettings& settings);
+  // Joins a spectator with these settings: no body.
+  FakeClient& spectate(const wire::ViewSettings& settings);
   void leave(server::FeedClient id);
   // One tick: inputs (set through `sim()` first), step, feed every client.
   void tick();

@@ -383,3 +383,52 @@ TEST(GameRules, TheRulesFindBodiesByNameAndSeeSensorEvents) {
 }
 
 }  // namespace
+
+// A sweeper: a kinematic wall driving a ball into a static wall; the rules see the
+// crush (the three bodies) on the tick the gap closes below the ball's width, and
+// destroy the ball, after which nothing is crushed.
+class CrushRules : public GameRules {
+ public:
+  phys::BodyId sweeper, ball, wall;
+  std::vector<std::uint64_t> crushed_at;
+  double front_when_crushed = 0.0;
+  void on_create(GameWorld& w) override {
+    phys::BodyDef def;
+    def.shape = phys::Shape::Box;
+    def.motion = phys::Motion::Static;
+    def.position = {5.25, 0.0};
+    def.half_extents = {0.25, 2.0};
+    wall = w.create(def);  // near face at x = 5
+    def.motion = phys::Motion::Kinematic;
+    def.position = {0.0, 0.0};
+    def.half_extents = {0.5, 2.0};
+    def.velocity = {3.0, 0.0};  // 0.05 m a tick
+    sweeper = w.create(def);
+    phys::BodyDef ball_def;
+    ball_def.shape = phys::Shape::Circle;
+    ball_def.radius = 0.5;
+    ball_def.position = {2.0, 0.0};
+    ball = w.create(ball_def);
+  }
+  void after_step(GameWorld& w) override {
+    for (const phys::CrushEvent& e : w.crush_events()) {
+      EXPECT_EQ(e.kinematic, sweeper);
+      EXPECT_EQ(e.dynamic, ball);
+      EXPECT_EQ(e.fixed, wall);
+      if (crushed_at.empty()) front_when_crushed = w.body(sweeper)->position.x + 0.5;
+      crushed_at.push_back(w.tick());
+      w.destroy(e.dynamic);
+    }
+  }
+};
+
+TEST(GameRules, TheRulesSeeABodyCrushedBetweenAKinematicAndAStaticBody) {
+  auto rules = std::make_shared<CrushRules>();
+  Simulation sim(server_test::free_space_scene(), {}, rules);
+  for (int i = 0; i < 90; ++i) sim.step_tick();
+  // The gap (5 - the sweeper's front) closes below the ball's width (1) when the
+  // front passes 4, 7/6 s in; the crush comes within a tick of it, once.
+  ASSERT_EQ(rules->crushed_at.size(), 1u);
+  EXPECT_GT(rules->front_when_crushed, 4.0);
+  EXPECT_LE(rules->front_when_crushed, 4.0 + 0.05 + 1e-9);
+}

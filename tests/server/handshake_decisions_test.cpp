@@ -96,6 +96,20 @@ TEST(HandshakeDecisions, ASecondHelloIsRefusedBeforeAnyOtherCheck) {
   EXPECT_EQ(decision.refusal.text, "a second Hello on the same connection");
 }
 
+// Protocol 2 sent no kinematic bodies and no BodyShape velocity or filter: a client
+// of it would draw a world without its moving walls, so it is refused.
+TEST(HandshakeDecisions, TheVersionBeforeIsRefused) {
+  server::Simulation simulation(server_test::free_space_scene());
+  Handshake handshake(config_with(4));
+  pw::Hello old = hello();
+  old.set_protocol_version(2);
+  ASSERT_EQ(wire::kProtocolVersion, 3u);
+  const HelloDecision decision = handshake.decide(1, false, old, simulation);
+  expect_refused(decision, pw::ERROR_PROTOCOL_VERSION, DropReason::ProtocolVersion);
+  EXPECT_EQ(decision.refusal.text,
+            "client speaks protocol version 2, this server speaks version 3");
+}
+
 TEST(HandshakeDecisions, WrongVersionNamesBothVersions) {
   server::Simulation simulation(server_test::free_space_scene());
   Handshake handshake(config_with(4));

@@ -75,7 +75,7 @@ TEST(ServerProcess, ServesClientsOnThePortItPrintedAndStopsCleanly) {
 TEST(ServerProcess, ALockstepChildComputesTheSceneFilesWorld) {
   ProcessOptions options = server_options();
   options.scene_file = PHYSICS_SCENES_DIR "/circle-pile.textproto";
-  options.extra_args = {"--lockstep", "--lockstep-timeout-ms", "10000"};
+  options.extra_args = {"--lockstep", "--lockstep-pace", "asap", "--lockstep-timeout-ms", "10000"};
   ServerProcess process(options);
   Expected<scene::SceneDef> scene = load_scene(*options.scene_file);
   ASSERT_TRUE(scene);

@@ -280,7 +280,11 @@ TEST(BadSettings, EachIsNamed) {
   WorldSettings s;
   EXPECT_EQ(check_settings(s), SettingsError::None);
   s.gravity.y = kNaN;
-  EXPECT_EQ(check_settings(s), SettingsError::NonFiniteGravity);
+  EXPECT_EQ(check_settings(s), SettingsError::BadGravity);
+  s.gravity.y = -1.0e7;  // finite, beyond kMaxGravity
+  EXPECT_EQ(check_settings(s), SettingsError::BadGravity);
+  s.gravity.y = -kMaxGravity;
+  EXPECT_EQ(check_settings(s), SettingsError::None);
   s = {};
   s.substeps = 0;
   EXPECT_EQ(check_settings(s), SettingsError::BadSubsteps);

@@ -91,6 +91,7 @@ struct PlayoutBody {
   // Its state is the same, bit for bit, in the two newest snapshots held: nothing
   // moved it between them (with the exact encodings: it is asleep or at rest).
   bool still = false;
+  Motion motion = Motion::Dynamic;  // the snapshot's BodyState::motion
 };
 
 struct PlayoutFrame {

@@ -12,7 +12,7 @@
 namespace client {
 
 // The protocol version this client speaks (physics.wire.PROTOCOL_VERSION_CURRENT).
-inline constexpr std::uint32_t kProtocolVersion = 2;
+inline constexpr std::uint32_t kProtocolVersion = 3;
 
 struct Vec2 {
   double x = 0.0;
@@ -22,7 +22,22 @@ struct Vec2 {
 
 enum class ShapeType : std::uint8_t { Unspecified, Circle, Box };
 
-// A body's shape and material, sent once (in Welcome or Snapshot::added).
+// How a body moves: never (static), by forces and contacts (dynamic), or by its
+// velocity alone, pushing what it meets (kinematic).
+enum class Motion : std::uint8_t { Static, Dynamic, Kinematic };
+
+// Which bodies a body collides with (phys::Filter): two bodies of the same nonzero
+// group always (positive) or never (negative) collide; otherwise each one's mask
+// must hold the other's category.
+struct CollisionFilter {
+  std::uint32_t category_bits = 0x1;
+  std::uint32_t mask_bits = 0xFFFFFFFFu;
+  std::int32_t group = 0;
+  bool operator==(const CollisionFilter&) const = default;
+};
+
+// A body's shape and material, sent once (in Welcome or Snapshot::added): with the
+// state the snapshots carry, every field the world's state hash covers.
 struct BodyShape {
   std::uint64_t body_id = 0;
   ShapeType shape = ShapeType::Unspecified;
@@ -33,20 +48,28 @@ struct BodyShape {
   double mass = 0.0;
   double restitution = 0.0;
   Vec2 friction;
-  std::string name;           // the scene's or the game's name for it; empty: none
-  bool is_kinematic = false;  // moved by its velocity alone, infinite mass
-  bool is_sensor = false;     // detects overlaps, collides with nothing
+  std::string name;                 // the scene's or the game's name for it; empty: none
+  bool is_kinematic = false;        // moved by its velocity alone, infinite mass
+  bool is_sensor = false;           // detects overlaps, collides with nothing
+  Motion motion = Motion::Dynamic;  // the same as is_static and is_kinematic say
+  Vec2 velocity;                    // when sent; a kinematic body keeps it until changed
+  Vec2 acceleration;                // when sent (dynamic bodies only)
+  double contact_friction = 0.0;
+  CollisionFilter filter;
 
   // Half the size of the axis-aligned box it occupies: a box's half extents, a
   // circle's (radius, radius), as the server sizes bodies.
   Vec2 box_half_size() const;
 };
 
-// A dynamic body's state after a tick.
+// A moving (dynamic or kinematic) body's state after a tick.
 struct BodyState {
   std::uint64_t body_id = 0;
   Vec2 position;
   Vec2 velocity;
+  // Its BodyShape's (Welcome or Snapshot::added), kept by the client: Dynamic or
+  // Kinematic (a static body never moves, so is never in a snapshot).
+  Motion motion = Motion::Dynamic;
   bool operator==(const BodyState&) const = default;
 };
 
@@ -54,7 +77,7 @@ struct BodyState {
 enum class Encoding : std::uint8_t {
   Predicted = 0,  // quantised, only bodies that left the prediction (the default)
   Exact = 1,      // exact doubles, only bodies that changed at all
-  Full = 2,       // exact doubles, every dynamic body in every snapshot
+  Full = 2,       // exact doubles, every moving body in every snapshot
   // No bodies: the inputs the server applied (docs/PROTOCOL.md 5.12), for a client
   // that runs the world (ClientConfig::want_world). This client library reads no
   // bodies from it; the predicting client follows it.
@@ -155,13 +178,13 @@ struct ContactEvent {
   bool operator==(const ContactEvent&) const = default;
 };
 
-// The world after tick `tick`, as this client holds it: every dynamic body in its
+// The world after tick `tick`, as this client holds it: every moving body in its
 // view, reconstructed from what the server sent (exact with Encoding::Exact and
 // Encoding::Full; within the view's tolerance with Encoding::Predicted).
 struct Snapshot {
   std::uint64_t tick = 0;
   std::uint64_t state_hash = 0;   // the world's, when the view asked for it (else 0)
-  std::vector<BodyState> bodies;  // every dynamic body held, ascending id
+  std::vector<BodyState> bodies;  // every moving body held, ascending id
   // The own body's state in this snapshot (absent only if the server left it out).
   std::optional<BodyState> own;
   bool has_applied_input = false;
@@ -239,8 +262,10 @@ enum class ErrorCode : std::uint32_t {
   SeatOutOfRange = 17,
   InputClamped = 18,  // not fatal: said once, at the first clamped input
   LockstepStraggler = 19,
+  Internal = 20,             // the server failed handling this client's message; closed
   InvalidSubscription = 21,  // Hello.contacts not allowed as given
   RefusedByGame = 22,        // the game on the server refused the player; message says why
+  InvalidGameMessage = 23,   // a GameMessage too large, too many for its tick, or no game
 };
 
 std::string_view to_string(ErrorCode code);

@@ -39,6 +39,8 @@ struct BotResult {
   std::vector<double> frame_cpu_ms;
   std::uint64_t desyncs = 0;
   std::uint64_t resyncs = 0;
+  std::uint64_t game_messages_sent = 0;
+  std::uint64_t game_messages_received = 0;
 };
 
 struct PendingInput {

@@ -48,10 +48,12 @@ void run_thin_bot(const LoadConfig& config, int index, std::barrier<>& start, Bo
   if (!result.connected) return;
 
   InputPacer pacer(bot, config.pacer);
+  GameMessageSender messages(config.messages);
   std::deque<PendingInput> pending;
   bool measuring = false;
   const InputPacer::InputFor input = [&](std::uint64_t tick) -> Vec2 {
     if (config.still) return {0.0, 0.0};
+    messages.before_input(bot, tick, Clock::now());
     if (measuring) {
       pending.push_back({tick, Clock::now()});
       ++result.inputs;
@@ -85,6 +87,7 @@ void run_thin_bot(const LoadConfig& config, int index, std::barrier<>& start, Bo
   std::optional<Snapshot> previous;
   while (Clock::now() < end) {
     auto snapshot = poll(end);
+    result.game_messages_received += bot.take_game_messages().size();
     if (!snapshot) {
       if (bot.state() != ConnectionState::Connected) {
         result.failure = bot.last_error().to_string();
@@ -129,6 +132,8 @@ void run_thin_bot(const LoadConfig& config, int index, std::barrier<>& start, Bo
   result.records = bot.stats().records_received - records_before;
   result.dropped = bot.stats().snapshots_dropped;
   result.unanswered = pending.size();
+  result.game_messages_received += bot.take_game_messages().size();
+  result.game_messages_sent = messages.sent();
   bot.disconnect("load run finished");
 }
 
@@ -203,6 +208,8 @@ LoadReport run_load(const LoadConfig& config) {
     report.records += result.records;
     report.snapshots += result.snapshots;
     report.bytes += result.bytes;
+    report.game_messages_sent += result.game_messages_sent;
+    report.game_messages_received += result.game_messages_received;
   }
   report.latency_samples = latencies.size();
   report.latency_median_ms = quantile(latencies, 0.5);

@@ -25,8 +25,10 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
 
   std::deque<PendingInput> shown;      // waiting to be stepped by the prediction
   std::deque<PendingInput> confirmed;  // waiting for a snapshot that covers them
+  GameMessageSender messages(config.messages);
   bool measuring = false;
   const InputPacer::InputFor input = [&](std::uint64_t tick) -> Vec2 {
+    messages.before_input(bot.connection(), tick, Clock::now());
     if (measuring) {
       shown.push_back({tick, Clock::now()});
       confirmed.push_back(shown.back());
@@ -55,6 +57,7 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
   double frame_cpu_start = thread_cpu_ms();
   while (Clock::now() < end) {
     const PollResult polled = bot.poll(std::min(end, next_frame), input);
+    result.game_messages_received += bot.connection().take_game_messages().size();
     if (polled == PollResult::Ended) {
       result.failure = bot.error();
       break;
@@ -114,6 +117,8 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
   result.largest_smoothed_correction = after.prediction.largest_smoothed_correction;
   result.desyncs = after.prediction.desyncs;
   result.resyncs = after.prediction.resyncs;
+  result.game_messages_received += bot.connection().take_game_messages().size();
+  result.game_messages_sent = messages.sent();
   bot.disconnect("load run finished");
 }
 

@@ -303,7 +303,7 @@ std::vector<PredictionCore::Position> PredictionCore::positions() const {
   std::vector<Position> out;
   out.reserve(world_.dynamic_body_count());
   world_.for_each_body([&](const phys::BodyState& body) {
-    if (body.motion == phys::Motion::Dynamic) out.push_back({body.id.packed(), body.position});
+    if (body.motion != phys::Motion::Static) out.push_back({body.id.packed(), body.position});
   });
   return out;
 }
@@ -358,9 +358,10 @@ RenderState PredictionCore::render() const {
   state.tick = world_tick_;
   state.bodies.reserve(world_.dynamic_body_count());
   world_.for_each_body([&](const phys::BodyState& body) {
-    if (body.motion != phys::Motion::Dynamic) return;
+    if (body.motion == phys::Motion::Static) return;
     RenderBody& shown = state.bodies.emplace_back();
     shown.body_id = body.id.packed();
+    shown.motion = body.motion == phys::Motion::Kinematic ? Motion::Kinematic : Motion::Dynamic;
     shown.predicted_position = {body.position.x, body.position.y};
     shown.velocity = {body.velocity.x, body.velocity.y};
     const Vec2 offset = correction(shown.body_id);

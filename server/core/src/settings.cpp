@@ -20,8 +20,8 @@ const char* describe(SettingsError error) {
   switch (error) {
     case SettingsError::None:
       return "ok";
-    case SettingsError::NonFiniteGravity:
-      return "gravity is not a finite number";
+    case SettingsError::BadGravity:
+      return "gravity must be finite, at most 1e6 m/s^2 on each axis";
     case SettingsError::BadSubsteps:
       return "substeps must be in [1, 64]";
     case SettingsError::BadSlop:
@@ -40,7 +40,10 @@ const char* describe(SettingsError error) {
 
 SettingsError check_settings(const WorldSettings& s) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!is_finite(s.gravity)) return SettingsError::NonFiniteGravity;
+  if (!is_finite(s.gravity) || std::fabs(s.gravity.x) > kMaxGravity ||
+      std::fabs(s.gravity.y) > kMaxGravity) {
+    return SettingsError::BadGravity;
+  }
   if (s.substeps < 1 || s.substeps > 64) return SettingsError::BadSubsteps;
   if (!std::isfinite(s.slop) || s.slop < 0.0 || s.slop > 0.1) return SettingsError::BadSlop;
   if (s.position_iterations < 1 || s.position_iterations > 64 || s.velocity_iterations < 1 ||

@@ -58,6 +58,10 @@ void collide_on_y(const StepContext& ctx, WorldImpl& w, const Order& order,
 void collide_on_x(const StepContext& ctx, WorldImpl& w, const Order& order,
                   const FreeMotion& motion);
 
+// step_crush.cpp: in a world with kinematic bodies, before each collide phase, the
+// bodies a kinematic body pins against a static one (physics/crush_events.h).
+void find_pinned_bodies(const StepContext& ctx, WorldImpl& w);
+
 // step_velocity.cpp: the velocity solver (restitution, contact friction, shock
 // propagation, warm start, held support, waking what is hit). Returns this
 // sub-step's contact records.

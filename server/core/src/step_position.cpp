@@ -26,7 +26,10 @@ class PositionPass : StepPhase {
  public:
   PositionPass(const StepContext& ctx, WorldImpl& world, const Order& order,
                const FreeMotion& motion)
-      : StepPhase(ctx, world), order_(order), motion_(motion) {}
+      : StepPhase(ctx, world),
+        order_(order),
+        motion_(motion),
+        pins_(world.kinematic_count() != 0 && !world.scratch.position.pinned.empty()) {}
   template <int axis>
   void collide_boxes_on();
   void collide_with_circles();
@@ -49,9 +52,11 @@ class PositionPass : StepPhase {
                                double wa, double wb);
   bool may_undo_slide(const Body& body, Vec2 undo) const;
   void record_near_miss(const Candidate& cand, Vec2 n, double gap);
+  bool held_off(const Candidate& cand, const Body& b, Vec2 n) const;
 
   Order order_;
   FreeMotion motion_;
+  const bool pins_;  // some body is pinned (find_pinned_bodies)
 };
 
 // How close two bodies must be after the first pass to be worth another: within
@@ -349,6 +354,7 @@ void PositionPass::relaxed_circle_passes() {
 // supported body is immovable for the bodies it carries.
 inline bool PositionPass::separate(const Candidate& cand, Body& a, Body& b, Vec2 n, double depth) {
   const double up = dot(n, c_.up);
+  if (pins_ && cand.fixed && held_off(cand, b, n)) return false;
   const auto c = static_cast<std::uint32_t>(&cand - w_.candidates.list.data());
   double wa = a.inv_mass;
   double wb = cand.fixed ? 0.0 : b.inv_mass;
@@ -377,6 +383,15 @@ inline bool PositionPass::separate(const Candidate& cand, Body& a, Body& b, Vec2
   if (wb == 1.0) b.correction += n * push;
   ++w_.counters.contacts;
   return depth > 0.0;
+}
+
+// Whether the push of fixed body b on a pinned body is held off: b is kinematic and
+// pushes toward the static body the lower one is pinned against. The static body
+// has the last word; the kinematic body overlaps the pinned one instead.
+inline bool PositionPass::held_off(const Candidate& cand, const Body& b, Vec2 n) const {
+  if (b.motion != Motion::Kinematic) return false;
+  const Vec2 wall = x_.position.pin_normal[cand.lower_pos];
+  return dot(n, wall) < 0.0;
 }
 
 // Static friction in the position passes (as in position-based dynamics, Mueller
@@ -457,12 +472,14 @@ inline void PositionPass::record_near_miss(const Candidate& cand, Vec2 n, double
 // The Y phase: boxes on Y (circles wait for the X phase).
 void collide_on_y(const StepContext& ctx, WorldImpl& w, const Order& order,
                   const FreeMotion& motion) {
+  if (w.kinematic_count() != 0) find_pinned_bodies(ctx, w);
   PositionPass(ctx, w, order, motion).collide_boxes_on<1>();
 }
 
 // The X phase: boxes on X, then every pair with a circle.
 void collide_on_x(const StepContext& ctx, WorldImpl& w, const Order& order,
                   const FreeMotion& motion) {
+  if (w.kinematic_count() != 0) find_pinned_bodies(ctx, w);
   PositionPass pass(ctx, w, order, motion);
   if (motion.any_box) pass.collide_boxes_on<0>();
   if (!motion.any_circle && !(motion.any_box && w.lists.fixed_circles > 0)) return;

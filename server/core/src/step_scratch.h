@@ -84,6 +84,12 @@ struct StepScratch {
       std::uint32_t corner;  // a circle beside a box's corner: no speculative margin
     };
     std::vector<RelaxedPair> relaxed;
+    // Written by find_pinned_bodies (step_crush.cpp), read by the position passes
+    // and the velocity solver: the positions of the bodies pinned against a static
+    // body by a kinematic one, and per position the normal toward that static body
+    // (zero for a body not pinned).
+    std::vector<std::uint32_t> pinned;
+    std::vector<Vec2> pin_normal;
   } position;
 
   // Written by the velocity solver (step_velocity.cpp); `contacts` is read after it

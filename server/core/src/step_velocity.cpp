@@ -1,7 +1,8 @@
 // The velocity solver: sequential impulses over the contacts the moves and the
 // position passes marked (restitution, contact friction, shock propagation, warm
 // start), and what the contacts held of each body's acceleration.
-// Reads: the candidates and scratch.marks, the bodies, the warm-start pool.
+// Reads: the candidates, scratch.marks and (with kinematic bodies) the pinned
+// bodies, the bodies, the warm-start pool.
 // Writes: the bodies' velocities, held accelerations and loads; the warm-start
 // pool; scratch.velocity (its contact records, handed on to sleep) and to_wake.
 #include <algorithm>
@@ -42,6 +43,8 @@ class VelocitySolver : StepPhase {
   static double held_part(double change, double a);
   static Vec2 cancelled_velocity(Vec2 v, Vec2 correction, double per_second);
   void wake_if_hit(const Candidate& cand, const ContactRecord& contact, double closing);
+  bool held_off(std::uint32_t c) const;
+  void stop_pinned_bodies();
 
   const bool scattered_;             // the processing order is far from slot order
   const bool any_contact_friction_;  // an awake body has contact friction
@@ -89,6 +92,7 @@ std::span<const ContactRecord> VelocitySolver::run() {
     x_.velocity.before_contacts.resize(active);
     x_.velocity.in_contact.assign(active, 0);
   }
+  const bool pins = kinematic_ && !x_.position.pinned.empty();
   for (std::uint32_t p = 0; p < active; ++p) {
     if (scattered_) prefetch_ahead(p);
     for (std::uint32_t c = w_.candidates.first[p]; c < w_.candidates.first[p + 1]; ++c) {
@@ -96,7 +100,7 @@ std::span<const ContactRecord> VelocitySolver::run() {
       if (scattered_ && c + kPrefetchAhead < candidate_count) {
         __builtin_prefetch(&w_.bodies[w_.candidates.list[c + kPrefetchAhead].upper]);
       }
-      if (x_.marks.contact_of[c] != kNone) gather_contact(c);
+      if (x_.marks.contact_of[c] != kNone && !(pins && held_off(c))) gather_contact(c);
     }
     // Cancelled in a register and stored whole: reading back a velocity just
     // stored one half at a time stalls the load.
@@ -108,6 +112,7 @@ std::span<const ContactRecord> VelocitySolver::run() {
   }
   if (contact_count_ == 0) {  // no contact holds anything
     if (c_.hold) update_held();
+    if (kinematic_) stop_pinned_bodies();
     return {};
   }
   ++w_.counters.velocity_solves;
@@ -147,6 +152,7 @@ std::span<const ContactRecord> VelocitySolver::run() {
     b.velocity = velocity[p];
     if (c_.hold) update_held(p, b);
   }
+  if (kinematic_) stop_pinned_bodies();
   return contacts;
 }
 
@@ -355,6 +361,29 @@ inline Vec2 VelocitySolver::cancelled_velocity(Vec2 v, Vec2 correction, double p
     if (pushed < 0.0 && u > 0.0) u = std::max(0.0, u + pushed * per_second);
   }
   return v;
+}
+
+// The contact of a pinned body (step_crush.cpp) with a kinematic body pushing it
+// toward the static one is left out, as the position passes left out its push:
+// kept, it and the static contact would push the body both ways, their impulses
+// growing every sub-step while it stays pinned, and the warm start would hand the
+// kinematic one's pull on to the body once the kinematic body turned back.
+inline bool VelocitySolver::held_off(std::uint32_t c) const {
+  const Candidate& cand = w_.candidates.list[c];
+  if (!cand.fixed || body(cand.upper).motion != Motion::Kinematic) return false;
+  return dot(x_.marks.normal[c], x_.position.pin_normal[cand.lower_pos]) < 0.0;
+}
+
+// A body pinned against a static body by a kinematic one (step_crush.cpp) keeps no
+// velocity into the static body: the kinematic contact gave it the kinematic body's,
+// whose push the position passes held off.
+inline void VelocitySolver::stop_pinned_bodies() {
+  for (const std::uint32_t p : x_.position.pinned) {
+    Body& b = body(w_.lists.active[p]);
+    const Vec2 wall = x_.position.pin_normal[p];
+    const double into = dot(b.velocity, wall);
+    if (into > 0.0) b.velocity -= wall * into;
+  }
 }
 
 // A sleeping body wakes when it is hit: harder than a resting contact presses

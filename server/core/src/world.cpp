@@ -129,6 +129,11 @@ BodyId WorldImpl::add_body(const BodyDef& def, BodyDefError* error) {
   ++alive_count_;
   lists_dirty_ = true;
   rebuild_all_ = true;
+  if (def.motion == Motion::Static) {
+    query_index.forget_static();
+  } else {
+    query_index.forget_moving();
+  }
   return {index, generation};
 }
 
@@ -162,6 +167,13 @@ bool WorldImpl::remove_body(BodyId id) {
   }
   --alive_count_;
   if (contact_events_on) contact_tracker.removed(id.index);
+  if (b->motion == Motion::Static) {
+    query_index.forget_static();
+  } else if (b->is_dynamic() && !b->awake) {
+    query_index.forget_sleeping();
+  } else {
+    query_index.forget_moving();
+  }
   b->alive = false;
   free_slots_.push_back(id.index);
   lists_dirty_ = true;
@@ -208,6 +220,8 @@ void WorldImpl::wake(std::uint32_t index) {
     b.awake = true;
     ++counters.wakes;
     lists_dirty_ = true;
+    query_index.forget_sleeping();
+    query_index.forget_moving();
     changed_slots_.push_back(index);
   }
 }
@@ -256,6 +270,12 @@ std::uint64_t WorldImpl::state_hash() const {
       h.mix(static_cast<std::uint32_t>(f.filter.group) |
             (static_cast<std::uint64_t>(f.sensor ? 1 : 0) << 32));
     }
+  }
+  // The game state only when there is some, so that a world without it hashes as it
+  // did before worlds held one.
+  if (!game_state.empty()) {
+    h.mix(0x67616d6573746174ull);  // "gamestat": the game state starts here
+    game_state.mix_into(h);
   }
   return h.value();
 }
@@ -350,6 +370,8 @@ bool World::set_position(BodyId id, Vec2 position) {
   }
   b->position = position;
   b->still_time = 0.0;
+  if (b->motion == Motion::Static) impl_->query_index.forget_static();
+  impl_->query_index.forget_moving();  // and wake, below, the sleeping ones if it slept
   impl_->wake(id.index);
   impl_->lists_dirty_ = true;
   impl_->rebuild_all_ = true;  // a static or sleeping body's box moved
@@ -427,10 +449,13 @@ std::size_t World::awake_body_count() const {
 
 void World::step(double dt) {
   assert(std::isfinite(dt) && dt > 0.0);
+  impl_->query_index.forget_moving();
   impl_->step(dt);
 }
 
 std::uint64_t World::state_hash() const { return impl_->state_hash(); }
+GameState& World::game_state() { return impl_->game_state; }
+const GameState& World::game_state() const { return impl_->game_state; }
 std::uint64_t World::step_count() const { return impl_->steps; }
 void World::set_contact_events(bool on) {
   if (on == impl_->contact_events_on) return;
@@ -452,7 +477,7 @@ std::size_t WorldImpl::state_bytes() const {
          held(warm_pool) + held(lists.active) + held(lists.fixed) + held(lists.fixed_boxes) +
          held(candidates.list) + held(candidates.first) + held(candidates.fat_boxes) +
          held(free_slots_) + held(changed_slots_) + contact_tracker.state_bytes() +
-         lists.fixed_grid.state_bytes();
+         lists.fixed_grid.state_bytes() + game_state.heap_bytes();
 }
 
 }  // namespace phys

@@ -22,7 +22,7 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
 namespace {
 
 constexpr char kTag[8] = {'p', 'h', 'y', 's', 'w', 'r', 'l', 'd'};
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: the game state at the end
 
 class Writer {
  public:
@@ -41,6 +41,7 @@ class Writer {
   }
   bool ok() const { return true; }
   void fail(const std::string& /*why*/) {}
+  void game_state(GameState& state) { state.append_bytes(out); }
   std::vector<std::uint8_t> out;
 };
 
@@ -83,6 +84,16 @@ class Reader {
     ok_ = false;
   }
   bool at_end() const { return at_ == in_.size(); }
+  // GameState::read_bytes checks its own part of the bytes.
+  void game_state(GameState& state) {
+    if (!ok_) return;
+    std::size_t used = 0;
+    std::string why;
+    std::optional<GameState> read = GameState::read_bytes(in_.subspan(at_), &used, &why);
+    if (!read) return fail(why);
+    state = std::move(*read);
+    at_ += used;
+  }
   std::string problem;
 
  private:
@@ -279,6 +290,7 @@ void state_fields(A& a, WorldImpl& w) {
   numbers(a, w.lists.kinematic);
   field(a, w.kinematic_count_);
   field(a, w.filtered_count_);
+  a.game_state(w.game_state);
 }
 
 template <class A>
@@ -306,6 +318,51 @@ void ContactTracker::state_fields(A& a) {
   numbers(a, removed_);
 }
 
+// A finite value past one of the world's own limits (a speed over max_speed, a
+// size over max_body_size) is one the world would have clamped or refused, and the
+// step's arithmetic may overflow on it: refused too. The limits allow a rounding
+// over, as clamp_length leaves a length a rounding over its limit.
+static bool within(double value, double limit) {
+  return std::fabs(value) <= limit * (1.0 + 1.0e-9);
+}
+
+static std::string check_body_limits(const Body& b, const WorldSettings& s) {
+  if (!within(b.velocity.x, s.max_speed) || !within(b.velocity.y, s.max_speed)) {
+    return "moves faster than the world's max_speed";
+  }
+  if (!within(b.acceleration.x, s.max_acceleration) ||
+      !within(b.acceleration.y, s.max_acceleration)) {
+    return "has an acceleration over the world's max_acceleration";
+  }
+  if (!(b.radius >= 0.0) || !within(b.radius, s.max_body_size) || !(b.half.x > 0.0) ||
+      !(b.half.y > 0.0) || !within(b.half.x, s.max_body_size) ||
+      !within(b.half.y, s.max_body_size)) {
+    return "has a size out of the world's range";
+  }
+  // The material and the step's carried-over values, as add_body checks the first.
+  const double carried[] = {b.correction.x, b.correction.y,   b.load,          b.held.x,
+                            b.held.y,       b.still_anchor.x, b.still_anchor.y};
+  for (const double v : carried) {
+    if (!std::isfinite(v)) return "holds a non-finite number";
+  }
+  // What the contacts held of a resting body's acceleration is at most that
+  // acceleration (its own, clamped, plus gravity) on each axis.
+  if (!within(b.held.x, s.max_acceleration + std::fabs(s.gravity.x)) ||
+      !within(b.held.y, s.max_acceleration + std::fabs(s.gravity.y))) {
+    return "holds more support than its acceleration";
+  }
+  if (!(b.restitution >= 0.0 && b.restitution <= 1.0)) return "has a restitution outside [0, 1]";
+  if (!(b.contact_friction >= 0.0) || !std::isfinite(b.contact_friction) ||
+      !(b.friction.x >= 0.0) || !std::isfinite(b.friction.x) || !(b.friction.y >= 0.0) ||
+      !std::isfinite(b.friction.y)) {
+    return "has a friction that is negative or not finite";
+  }
+  if (b.is_dynamic() && (!(b.mass > 0.0) || b.inv_mass != 1.0 / b.mass)) {
+    return "is dynamic with a mass that is not positive or an inverse mass that is not its inverse";
+  }
+  return {};
+}
+
 // What the reader cannot take on trust: every index in range, every count as the
 // arrays say, every value the world itself would have refused refused here.
 std::string check_read_state(const WorldImpl& w) {
@@ -330,6 +387,11 @@ std::string check_read_state(const WorldImpl& w) {
     for (const double v : numbers) {
       if (!std::isfinite(v)) return "body slot " + std::to_string(i) + " holds a non-finite number";
     }
+    if (b.alive) {
+      if (std::string problem = check_body_limits(b, w.settings); !problem.empty()) {
+        return "body slot " + std::to_string(i) + " " + problem;
+      }
+    }
     if (w.warm_count[i] > kWarmSlots) return "a body has more warm-start entries than slots";
     if (w.warm_first[i] != kWarmInSlot &&
         (w.warm_first[i] > w.warm_pool.size() ||
@@ -352,6 +414,19 @@ std::string check_read_state(const WorldImpl& w) {
   };
   if (!in_slots(w.lists.active) || !in_slots(w.lists.fixed) || !in_slots(w.changed_slots_)) {
     return "a body list names a slot that does not exist";
+  }
+  // Only the awake list's bodies keep their warm-start entries in the pool: the step
+  // rewrites the pool and their places in it, and a body that leaves the list takes
+  // its entries into its own slot (rebuild_lists). Any other body pointing into the
+  // pool would be left pointing into a pool rewritten without it.
+  {
+    std::vector<std::uint8_t> awake(slots, 0);
+    for (const std::uint32_t s : w.lists.active) awake[s] = 1;
+    for (std::size_t i = 0; i < slots; ++i) {
+      if (w.warm_first[i] != kWarmInSlot && !awake[i]) {
+        return "a body not on the awake list keeps warm-start entries in the pool";
+      }
+    }
   }
   for (const std::uint32_t s : w.free_slots_) {
     if (s >= slots || w.bodies[s].alive) return "a free slot is out of range or holds a body";

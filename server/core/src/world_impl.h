@@ -10,7 +10,9 @@
 
 #include "contact_tracker.h"
 #include "physics/broadphase.h"
+#include "physics/game_state.h"
 #include "physics/world.h"
+#include "query_index.h"
 #include "sensor_tracker.h"
 #include "step_records.h"
 #include "step_scratch.h"
@@ -166,7 +168,11 @@ class WorldImpl {
   void fell_asleep(std::uint32_t slot) {
     changed_slots_.push_back(slot);
     lists_dirty_ = true;
+    query_index.forget_sleeping();
+    query_index.forget_moving();
   }
+  // The lists as they stand, if no change since their last rebuild left them stale.
+  const BodyLists* lists_if_current() const { return lists_dirty_ ? nullptr : &lists; }
 
   WorldSettings settings;
   StageCounters counters;
@@ -205,6 +211,16 @@ class WorldImpl {
   // The sensors' slots, ascending; their overlaps and events.
   std::vector<std::uint32_t> sensors;
   SensorTracker sensor_tracker;
+  // Crushes (World::crush_events), tagged with the step that found them: a list
+  // whose step is not the last step's is stale, and the next crush clears it.
+  std::vector<CrushEvent> crushes;
+  void record_crush(std::uint32_t kinematic, std::uint32_t dynamic, std::uint32_t fixed);
+  // The bodies filed for World's queries; not state: forgotten (forget) whenever
+  // bodies move, come or go, and empty in a copy.
+  mutable QueryIndex query_index;
+  // The game's variables and timers (World::game_state): copied, written and hashed
+  // with the bodies.
+  GameState game_state;
 
  private:
   friend class World;

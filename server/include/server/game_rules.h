@@ -9,13 +9,21 @@
 // inputs, and each tick's hash checks that the rules did the same.
 //
 // The order within a tick (Simulation::step_tick):
-//   joins and leaves since the previous tick (on_join, on_leave, as they happen)
+//   joins and leaves since the previous tick (on_join, on_joined, on_leave, as they
+//   happen)
 //   the inputs due at the tick applied to the players' bodies
+//   on_timer for each timer due at the tick, in (due tick, name, index) order
 //   before_step(world, inputs)
 //   the world's step
 //   after_step(world, contact events of the step)
 // on_create once, when the Simulation is made (the scene loaded, tick 0); on_end
 // when the server stops. A rule that throws fails the tick, as any tick failure.
+//
+// What the rules keep from one tick to the next belongs in the world's game state
+// (GameWorld::set_int, set_number, start_timer), not in the rules' own members: a
+// saved and restored world, a replay, a resync and a late joiner's world carry the
+// game state, and the state hash covers it. physics_testing::check_rules_state_in_world
+// catches a rule that keeps state in its members.
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -86,9 +94,61 @@ class GameWorld {
   const std::vector<phys::ContactEvent>& contact_events() const;
   // The last step's sensor events (after_step): bodies entering and leaving sensors.
   const std::vector<phys::SensorEvent>& sensor_events() const;
+  // The last step's crushes (after_step): a dynamic body pinned between a moving
+  // kinematic body and a static one (physics/crush_events.h), to kill or respawn.
+  const std::vector<phys::CrushEvent>& crush_events() const;
   // A body by its name (the lowest id of that name), and a body's name.
   std::optional<phys::BodyId> find_body(std::string_view name) const;
   std::uint64_t state_hash() const;
+
+  // The world's queries, as World's (physics/query.h: what each finds, exactly, and
+  // what it costs): a ray's first hit or all its hits, the bodies in a box, a circle
+  // or at a point, a moving circle's or box's first hit. Answers are values: bodies
+  // may be created or destroyed while going through them.
+  std::optional<phys::CastHit> cast_ray(phys::Vec2 origin, phys::Vec2 translation,
+                                        const phys::QueryFilter& filter = {},
+                                        phys::QueryError* error = nullptr) const;
+  std::vector<phys::CastHit> cast_ray_all(phys::Vec2 origin, phys::Vec2 translation,
+                                          const phys::QueryFilter& filter = {},
+                                          phys::QueryError* error = nullptr) const;
+  std::vector<phys::BodyId> overlap_box(const phys::Aabb& box, const phys::QueryFilter& filter = {},
+                                        phys::QueryError* error = nullptr) const;
+  std::vector<phys::BodyId> overlap_circle(phys::Vec2 center, double radius,
+                                           const phys::QueryFilter& filter = {},
+                                           phys::QueryError* error = nullptr) const;
+  std::vector<phys::BodyId> overlap_point(phys::Vec2 point, const phys::QueryFilter& filter = {},
+                                          phys::QueryError* error = nullptr) const;
+  std::optional<phys::CastHit> cast_circle(phys::Vec2 center, double radius, phys::Vec2 translation,
+                                           const phys::QueryFilter& filter = {},
+                                           phys::QueryError* error = nullptr) const;
+  std::optional<phys::CastHit> cast_box(phys::Vec2 center, phys::Vec2 half_extents,
+                                        phys::Vec2 translation,
+                                        const phys::QueryFilter& filter = {},
+                                        phys::QueryError* error = nullptr) const;
+
+  // The game's variables and timers, in the world (phys::GameState): keyed by a
+  // name (1 to 64 bytes) and an index (e.g. a client or a body id), at most 4096
+  // entries in all. A value the state refuses (an empty or long name, a new entry
+  // beyond the limit, a number not finite) changes nothing: false, and *error says
+  // why.
+  std::int64_t get_int(std::string_view name, std::uint64_t index = 0,
+                       std::int64_t fallback = 0) const;
+  double get_number(std::string_view name, std::uint64_t index = 0, double fallback = 0.0) const;
+  bool set_int(std::string_view name, std::int64_t value, std::uint64_t index = 0,
+               phys::GameStateError* error = nullptr);
+  bool set_number(std::string_view name, double value, std::uint64_t index = 0,
+                  phys::GameStateError* error = nullptr);
+  // Removes the integer and the number of that key: true when there was either.
+  bool erase(std::string_view name, std::uint64_t index = 0);
+  // A timer: GameRules::on_timer(name, index) at tick tick() + after_ticks (after the
+  // inputs of that tick, before before_step), then every `every_ticks` ticks after
+  // it (0: once). after_ticks is at least 1. Starting a running timer starts it
+  // again.
+  bool start_timer(std::string_view name, std::uint64_t after_ticks, std::uint64_t every_ticks = 0,
+                   std::uint64_t index = 0, phys::GameStateError* error = nullptr);
+  // True when the timer was running.
+  bool cancel_timer(std::string_view name, std::uint64_t index = 0);
+  const phys::GameState& game_state() const;
 
   // The players' game messages for this tick (before_step; empty elsewhere), in
   // ascending client, each client's in the order they arrived.
@@ -114,10 +174,16 @@ class GameRules {
                                std::optional<std::uint32_t> /*seat*/) {
     return {};
   }
+  // A player is in the world, with this body (the rules' own or the scene's player):
+  // right after on_join let it in and the body was made.
+  virtual void on_joined(GameWorld& /*world*/, ClientId /*client*/, phys::BodyId /*body*/) {}
   // A player left; its body is gone already.
   virtual void on_leave(GameWorld& /*world*/, ClientId /*client*/) {}
   virtual void before_step(GameWorld& /*world*/, const std::vector<AppliedInput>& /*inputs*/) {}
   virtual void after_step(GameWorld& /*world*/) {}
+  // A timer started with GameWorld::start_timer is due (at its tick, before
+  // before_step). A periodic one is already scheduled again when this is called.
+  virtual void on_timer(GameWorld& /*world*/, std::string_view /*name*/, std::uint64_t /*index*/) {}
   virtual void on_end(GameWorld& /*world*/) {}
   // True: the world produces contact events every step, for after_step.
   virtual bool wants_contact_events() const { return false; }

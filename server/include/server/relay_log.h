@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "physics/body.h"
+#include "physics/game_state.h"
 #include "wire.pb.h"
 
 namespace server {
@@ -33,6 +34,8 @@ class RelayLog {
   // A body moved by game rules (the values given, each when set).
   void set(phys::BodyId id, std::optional<phys::Vec2> position, std::optional<phys::Vec2> velocity,
            std::optional<phys::Vec2> acceleration);
+  // The world's game state, whole (RelayChange.game_state).
+  void game_state(const phys::GameState& state);
   // Between these, changes go to the open tick's list of the rules' phase
   // (RelayTick.before_step or after_step) instead of its `changes`.
   enum class RulesPhase { BeforeStep, AfterStep };

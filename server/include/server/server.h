@@ -254,9 +254,13 @@ struct ServerStats {
   // Due snapshots not sent because the client's window was full (it skipped them).
   std::uint64_t skipped_snapshots = 0;
   std::uint64_t snapshots_sent = 0;
-  std::uint64_t snapshot_records = 0;       // body records in the snapshots sent
-  std::uint64_t full_states = 0;            // full states sent (joins and requests)
-  std::uint64_t relay_resyncs = 0;          // input-relay clients sent the world state again
+  std::uint64_t snapshot_records = 0;  // body records in the snapshots sent
+  std::uint64_t full_states = 0;       // full states sent (joins and requests)
+  std::uint64_t relay_resyncs = 0;     // input-relay clients sent the world state again
+  // Welcomed input-relay clients now; the relay is attached to the world only while > 0,
+  // and holds this many stepped ticks (0 while detached).
+  std::size_t relay_clients = 0;
+  std::size_t relay_ticks_held = 0;
   std::uint64_t game_messages = 0;          // players' game messages accepted
   std::uint64_t game_messages_refused = 0;  // dropped with ERROR_INVALID_GAME_MESSAGE et al.
   std::uint64_t view_updates = 0;           // encodings made: one per view per due tick

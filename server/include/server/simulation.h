@@ -117,7 +117,12 @@ class Simulation {
   // From now on, bodies added and removed, accelerations changed and each tick's
   // state hash go to `relay` too (relay_log.h), which must outlive this or be
   // detached with nullptr. Changes no result; costs a state hash per tick.
-  void relay_to(RelayLog* relay) { relay_ = relay; }
+  // The game state goes to the relay whole, after a join, a leave or a tick that
+  // changed it (RelayChange.game_state), compared with the last one sent.
+  void relay_to(RelayLog* relay) {
+    relay_ = relay;
+    relayed_game_state_ = world_.game_state();  // what a follower is welcomed with
+  }
 
   // For the lockstep gate: about the next tick (current_tick() + 1).
   bool all_inputs_present() const;
@@ -146,11 +151,24 @@ class Simulation {
 
   BodyChanges take_changes();
 
+  // A handle on the world between ticks, for tests and tools (physics_testing::GameRun):
+  // its changes reach snapshots and the relay as the rules' do, as changes before
+  // the next tick, but no recording holds them (a replay runs only the rules).
+  GameWorld world_handle();
+  // From now on `rules` are called in place of the ones given, without on_create:
+  // what the old rules made is in the world already. For the check that rules keep
+  // nothing outside the world (physics_testing::check_rules_state_in_world).
+  void replace_rules(std::shared_ptr<GameRules> rules);
+
  private:
   friend class GameWorld;
   // A body added or removed, for snapshots (take_changes) and the relay.
   void note_added(phys::BodyId body, const phys::BodyDef& def);
   void note_removed(phys::BodyId body);
+  // GameRules::on_timer for each timer due at `tick`, in (due, name, index) order.
+  void fire_timers(GameWorld& handle, std::uint64_t tick);
+  // The game state to the relay when it differs from the last sent.
+  void relay_game_state();
 
   scene::SceneDef scene_;
   SimulationOptions options_;
@@ -171,6 +189,7 @@ class Simulation {
   std::vector<ClientGameMessage> delivering_;
   std::vector<OutgoingGameMessage> outgoing_;
   std::map<ClientId, phys::Vec2> last_applied_;  // each player's last input the rules saw
+  phys::GameState relayed_game_state_;           // the last one the relay was given
   bool ended_ = false;
 };
 

@@ -71,6 +71,17 @@ FollowResult apply_list(
                                                  ", which the world does not hold, or to a "
                                                  "value it refuses");
       }
+    } else if (change.has_game_state()) {
+      const std::string& bytes = change.game_state();
+      std::size_t used = 0;
+      std::string why = "bytes are left over after it";
+      std::optional<phys::GameState> state = phys::GameState::read_bytes(
+          std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), &used,
+          &why);
+      if (!state || used != bytes.size()) {
+        return fail(FollowProblem::BadInput, "sends a game state that is not one: " + why);
+      }
+      world.game_state() = std::move(*state);
     } else if (!world.remove_body(phys::BodyId::from_packed(change.removed()))) {
       return fail(FollowProblem::BodyMismatch,
                   "removes body " + id_text(change.removed()) + ", which the world does not hold");

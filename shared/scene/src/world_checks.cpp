@@ -119,7 +119,7 @@ bool check_world(Checker& check, const proto::World& world, SceneDef* def) {
   if (verdict == phys::SettingsError::None) return true;
   const char* field = "world";
   switch (verdict) {
-    case phys::SettingsError::NonFiniteGravity:
+    case phys::SettingsError::BadGravity:
       field = "gravity";
       break;
     case phys::SettingsError::BadSubsteps:

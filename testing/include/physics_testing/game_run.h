@@ -6,6 +6,7 @@
 // the Simulation the server runs, so a rule that holds here holds there, tick for
 // tick (a networked lockstep run ends at the same hashes).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,6 +20,9 @@
 #include "server/simulation.h"
 
 namespace physics_testing {
+
+// Makes a fresh rules object of a game, as the server's config would hold one.
+using RulesFactory = std::function<std::shared_ptr<server::GameRules>()>;
 
 // What one tick did.
 struct GameTick {
@@ -53,6 +57,17 @@ class GameRun {
   // A game message from the player for the rules at the next tick, with the
   // server's limits (size, count a tick).
   Outcome message(server::ClientId client, std::string payload);
+
+  // Test-only edits of the world between ticks, as the rules' GameWorld makes them
+  // (reaching snapshots and the input relay as changes before the next tick). No
+  // recording holds them: a replay runs only the rules, so a run that uses them is
+  // not one to record and replay.
+  Expected<phys::BodyId> add_body(const phys::BodyDef& def);
+  Outcome remove_body(phys::BodyId id);
+  Outcome set_position(phys::BodyId id, double x, double y);
+  Outcome set_velocity(phys::BodyId id, double vx, double vy);
+  // The game's variables and timers (the world's, GameWorld::set_int and the rest).
+  const phys::GameState& game_state() const { return simulation_.world().game_state(); }
 
   // Steps `ticks` ticks (at least one); returns the last one's record.
   const GameTick& step(std::uint64_t ticks = 1);

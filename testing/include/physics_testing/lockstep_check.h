@@ -12,6 +12,7 @@
 #include "client/input_pacer.h"
 #include "client/types.h"
 #include "physics_testing/clients.h"
+#include "physics_testing/game_run.h"
 #include "physics_testing/outcome.h"
 #include "scene/scene.h"
 
@@ -35,6 +36,16 @@ struct LockstepRun {
 Expected<LockstepRun> compare_lockstep_run(
     const scene::SceneDef& scene, const Clients& clients, const InputScript& script,
     std::uint64_t ticks, std::chrono::milliseconds snapshot_timeout = std::chrono::seconds(5));
+
+// The same for a game: the server runs `clients` with rules of the game (its
+// config's), and the in-process run is the server's own tick logic
+// (server::Simulation) with a fresh rules object from `rules`, stepped to the
+// clients' tick, the clients joined in the order of their bodies under their
+// client ids (without seats). Inputs only: a script's game messages are not sent.
+Expected<LockstepRun> compare_lockstep_run(
+    const scene::SceneDef& scene, const RulesFactory& rules, const Clients& clients,
+    const InputScript& script, std::uint64_t ticks,
+    std::chrono::milliseconds snapshot_timeout = std::chrono::seconds(5));
 
 // The same over a real path: every client on its own thread, sending its inputs on
 // its own clock ahead of the server (client::InputPacer), as a player does; the

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "client/client.h"
+#include "client/game_message_plan.h"
 #include "client/input_pacer.h"
 #include "client/prediction_core.h"
 
@@ -41,6 +42,8 @@ struct LoadConfig {
   // world run and predicted, its own inputs shown at once.
   bool predict = false;
   PredictionConfig prediction;
+  // Game messages each bot sends before its inputs (physics-client --game-message).
+  GameMessagePlan messages;
 };
 
 struct LoadReport {
@@ -69,9 +72,11 @@ struct LoadReport {
   std::uint64_t snapshots_dropped = 0;  // by the clients' own buffer bound
   // The server's ticks a second, as the bots saw them advance (mean over bots).
   double ticks_per_second = 0.0;
-  // The input delay in ticks the bots used (InputClock::delay()) at the end of the
-  // run: the least and the largest over bots, and the median of every bot's samples
-  // (one per snapshot).
+  // The input delay in ticks the bots used (InputClock::delay()): the median of every
+  // bot's samples over the run (one per snapshot; JSON input_delay_ticks_median), and
+  // each bot's delay at the end of the run, the least and the largest over bots
+  // (input_delay_ticks_final_min, _max). A delay that grows shows as a median below
+  // the final figures.
   std::uint32_t input_delay_min = 0;
   std::uint32_t input_delay_max = 0;
   double input_delay_median = 0.0;
@@ -103,6 +108,10 @@ struct LoadReport {
   double frame_cpu_ms_p99 = 0.0;
   std::uint64_t desyncs = 0;
   std::uint64_t resyncs = 0;
+  // Game messages over all bots and the whole session (settling included): sent by
+  // the bots, and received from the game.
+  std::uint64_t game_messages_sent = 0;
+  std::uint64_t game_messages_received = 0;
 };
 
 LoadReport run_load(const LoadConfig& config);

@@ -90,11 +90,12 @@ struct RenderBody {
   Vec2 position;
   Vec2 velocity;
   Vec2 predicted_position;
+  Motion motion = Motion::Dynamic;  // Dynamic or Kinematic (static bodies never move)
 };
 
 struct RenderState {
   std::uint64_t tick = 0;          // the predicted tick shown
-  std::vector<RenderBody> bodies;  // every dynamic body, ascending id
+  std::vector<RenderBody> bodies;  // every moving (dynamic or kinematic) body, ascending id
 };
 
 class PredictionCore {
@@ -197,7 +198,7 @@ class PredictionCore {
   std::uint64_t target_tick_ = 0;  // the newest tick advance_to asked for
   std::uint64_t frontier_ = 0;     // the newest tick ever stepped
   std::uint64_t shown_tick_ = 0;   // the newest tick render() has shown
-  // Dynamic bodies' positions at compare_tick_ before a rollback: once the world is
+  // Moving bodies' positions at compare_tick_ before a rollback: once the world is
   // back at that tick, their differences become corrections.
   std::optional<std::vector<Position>> compare_;
   std::uint64_t compare_tick_ = 0;

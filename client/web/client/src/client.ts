@@ -10,6 +10,7 @@ import { Predictor } from "./predictor.js";
 import { Quantum, Reconstruction } from "./reconstruction.js";
 import { SOCKET_OPEN, WebSocketConstructor, WebSocketLike, globalWebSocket, messageBytes } from "./socket.js";
 import {
+  BodyShape,
   BodyState,
   ClientError,
   ClientStats,
@@ -97,6 +98,9 @@ export class Client {
   private gameMessages: GameMessage[] = [];
   private waiters = new Set<Waiter>();
   private reconstruction = new Reconstruction();
+  /** The kinematic bodies among those sent (Welcome, Snapshot.added): each snapshot's
+   * BodyState.motion comes from it. */
+  private kinematicIds = new Set<bigint>();
   private predictor: Predictor | undefined;
   private quantum: Quantum = { position: 0.001, velocity: 0.001 };
   private hasAppliedInput = false;
@@ -329,6 +333,7 @@ export class Client {
     this.pongs = [];
     this.gameMessages = [];
     this.reconstruction = new Reconstruction();
+    this.kinematicIds = new Set<bigint>();
     this.predictor = undefined;
     this.hasAppliedInput = false;
     this.lastAppliedInputTick = 0;
@@ -487,6 +492,7 @@ export class Client {
           return;
         }
         this.welcome_ = welcome;
+        this.noteKinematic(welcome.bodies, []);
         this.predictor = new Predictor(welcome.tickRate, welcome.gravity.x, welcome.gravity.y);
         this.quantum = { position: welcome.view.positionPrecision, velocity: welcome.view.velocityPrecision };
         this.state_ = ConnectionState.Connected;
@@ -535,6 +541,11 @@ export class Client {
     this.notify();
   }
 
+  private noteKinematic(added: BodyShape[], removed: bigint[]): void {
+    for (const id of removed) this.kinematicIds.delete(id);
+    for (const shape of added) if (shape.motion === "kinematic") this.kinematicIds.add(shape.bodyId);
+  }
+
   private onSnapshot(message: wire.Snapshot, wireBytes: number): void {
     // The input fields come only when they change.
     if (message.hasAppliedInput) this.hasAppliedInput = true;
@@ -549,11 +560,19 @@ export class Client {
       (message.velocities?.idGaps.length ?? 0) +
       (message.exact?.idGaps.length ?? 0) +
       message.bodies.length;
+    const added = message.added.map(shapeFromWire);
+    const removed = [...message.removed];
+    this.noteKinematic(added, removed);
     const held = this.reconstruction.bodies();
     const bodies: BodyState[] = new Array(held.length);
     for (let i = 0; i < held.length; ++i) {
       const b = held[i];
-      bodies[i] = { bodyId: b.id, position: { x: b.x, y: b.y }, velocity: { x: b.vx, y: b.vy } };
+      bodies[i] = {
+        bodyId: b.id,
+        position: { x: b.x, y: b.y },
+        velocity: { x: b.vx, y: b.vy },
+        motion: this.kinematicIds.has(b.id) ? "kinematic" : "dynamic",
+      };
     }
     if (message.full) {
       this.fullStateAsked = false;
@@ -576,8 +595,8 @@ export class Client {
       own: undefined,
       hasAppliedInput: this.hasAppliedInput,
       lastAppliedInputTick: this.lastAppliedInputTick,
-      added: message.added.map(shapeFromWire),
-      removed: [...message.removed],
+      added,
+      removed,
       contactEvents: message.contactEvents.map(contactFromWire),
       contactEventsDropped: message.contactEventsDropped,
       inputMarginUs: message.inputMarginUs === undefined ? undefined : Number(message.inputMarginUs),

@@ -39,6 +39,11 @@ export function shapeFromWire(b: wire.BodyShape): BodyShape {
     restitution: b.restitution,
     friction: vec2(b.friction),
     name: b.name,
+    motion: b.isStatic ? "static" : b.isKinematic ? "kinematic" : "dynamic",
+    velocity: vec2(b.velocity),
+    acceleration: vec2(b.acceleration),
+    contactFriction: b.contactFriction,
+    filter: { categoryBits: b.categoryBits ?? 1, maskBits: b.maskBits ?? 0xffffffff, group: b.group },
   };
 }
 

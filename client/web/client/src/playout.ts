@@ -19,7 +19,7 @@
 // is carried forward at its velocity until one interval before the later one, then
 // interpolated. Past the newest snapshot each body is extrapolated at its velocity for
 // at most maxExtrapolation seconds, then held.
-import type { BodyState, Snapshot, Vec2 } from "./types.js";
+import type { BodyState, Motion, Snapshot, Vec2 } from "./types.js";
 
 export interface PlayoutSettings {
   /** The server's tick rate: a tick's server time is tick / rate. */
@@ -83,6 +83,8 @@ export interface PlayoutBody {
   velocity: Vec2;
   /** Its state is the same, bit for bit, in the two newest snapshots held. */
   still: boolean;
+  /** The snapshot's BodyState.motion: "dynamic" or "kinematic". */
+  motion: Motion;
 }
 
 export interface PlayoutFrame {
@@ -303,7 +305,13 @@ export class PlayoutBuffer {
     const newest = this.held[this.held.length - 1];
     frame.newestTick = newest.snapshot.tick;
     const emit = (body: BodyState, position: Vec2, velocity: Vec2) =>
-      frame.bodies.push({ bodyId: body.bodyId, position, velocity, still: this.stillIds.has(body.bodyId) });
+      frame.bodies.push({
+        bodyId: body.bodyId,
+        position,
+        velocity,
+        still: this.stillIds.has(body.bodyId),
+        motion: body.motion ?? "dynamic",
+      });
 
     if (shown > newest.serverTime) {
       const past = shown - newest.serverTime;

@@ -4,7 +4,7 @@
 // other 64-bit fields are bigints; ticks are numbers (exact below 2^53).
 
 /** The protocol version this client speaks (physics.wire.PROTOCOL_VERSION_CURRENT). */
-export const PROTOCOL_VERSION = 2;
+export const PROTOCOL_VERSION = 3;
 
 export interface Vec2 {
   x: number;
@@ -13,7 +13,22 @@ export interface Vec2 {
 
 export type ShapeType = "unspecified" | "circle" | "box";
 
-/** A body's shape and material, sent once (in Welcome or Snapshot.added). */
+/** How a body moves: never (static), by forces and contacts (dynamic), or by its
+ * velocity alone, pushing what it meets (kinematic). */
+export type Motion = "static" | "dynamic" | "kinematic";
+
+/** Which bodies a body collides with: two bodies of the same nonzero group always
+ * (positive) or never (negative) collide; otherwise each one's mask must hold the
+ * other's category. */
+export interface CollisionFilter {
+  categoryBits: number;
+  maskBits: number;
+  group: number;
+}
+
+/** A body's shape and material, sent once (in Welcome or Snapshot.added): with the
+ * state the snapshots carry, every field the world's state hash covers
+ * (docs/PROTOCOL.md 5.11). */
 export interface BodyShape {
   bodyId: bigint;
   shape: ShapeType;
@@ -28,6 +43,14 @@ export interface BodyShape {
   restitution: number;
   friction: Vec2;
   name: string;
+  /** The same as isStatic and isKinematic say. */
+  motion: Motion;
+  /** When sent; a kinematic body keeps it until the rules change it. */
+  velocity: Vec2;
+  /** When sent (dynamic bodies only). */
+  acceleration: Vec2;
+  contactFriction: number;
+  filter: CollisionFilter;
 }
 
 /** Half the size of the axis-aligned box a body occupies: a box's half extents, a
@@ -36,11 +59,13 @@ export function boxHalfSize(shape: BodyShape): Vec2 {
   return shape.shape === "box" ? shape.halfExtents : { x: shape.radius, y: shape.radius };
 }
 
-/** A dynamic body's state after a tick. */
+/** A moving (dynamic or kinematic) body's state after a tick. */
 export interface BodyState {
   bodyId: bigint;
   position: Vec2;
   velocity: Vec2;
+  /** Its shape's (Welcome or Snapshot.added): "dynamic" or "kinematic". */
+  motion: Motion;
 }
 
 export type Encoding = "predicted" | "exact" | "full" | "inputs";
@@ -124,8 +149,8 @@ export interface ContactEvent {
   closingSpeed: number;
 }
 
-/** The world after tick `tick` as this client holds it: every dynamic body of its
- * view, reconstructed from what the server sent. */
+/** The world after tick `tick` as this client holds it: every moving (dynamic or
+ * kinematic) body of its view, reconstructed from what the server sent. */
 export interface Snapshot {
   tick: number;
   /** The world's state hash, when the view asked for it (else 0n). */

@@ -26,7 +26,7 @@ const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 describe("lockstep on moving-1000", () => {
   let server;
   before(async () => {
-    server = await startServer(["--scene", moving, "--lockstep"]);
+    server = await startServer(["--scene", moving, "--lockstep", "--lockstep-pace", "asap"]);
   });
   after(async () => assert.equal(await server.stop(), 0));
 

@@ -1,21 +1,25 @@
 // The browser viewer: joins physics-server over WebSocket as a spectator or a player,
-// draws every body as physics-view does (static grey, moving blue, still violet, the
-// own body orange), interpolated between snapshots by the playout buffer, and steers
-// the own body with the arrow keys. Query string (docs/WEB.md):
+// draws every body as physics-view does (static grey, moving blue, still violet,
+// kinematic teal, sensors a translucent green, the own body orange and ringed, moving
+// bodies labelled), interpolated between snapshots by the playout buffer, steers the
+// own body with the arrow keys and sends the game messages bound to keys. The last
+// game messages received show in the panel. Query string (docs/WEB.md):
 //   ?ws=ws://127.0.0.1:PORT/   the server's --ws-port (default ws://127.0.0.1:7778/)
 //   &spectate=1                watch without a body
 //   &name=N &token=T           Hello.client_name, Hello.access_token
 //   &encoding=predicted|exact|full   the view's encoding (default predicted)
+//   &keys=space:jump,x:shoot   keys that send game messages (a player's only)
 // window.physicsViewer exposes what the page holds and drew, for tests and the console.
 import { Client, ConnectionState, PlayoutBuffer, type BodyShape, type Encoding, type Snapshot } from "@physics/client";
 import { type Camera, fit, toPixel } from "./camera";
+import { GameLog, keyName, parseKeyMap } from "./game";
 import * as palette from "./palette";
 
 interface DrawnBody {
   id: string;
   x: number;
   y: number;
-  kind: "dynamic" | "still" | "own";
+  kind: "dynamic" | "still" | "own" | "kinematic";
 }
 
 const params = new URLSearchParams(location.search);
@@ -40,6 +44,10 @@ let previous: Snapshot | undefined;
 let paused = false;
 const keys = new Set<string>();
 const rate = { bytes: 0, at: 0, kbitPerSecond: 0 };
+const keyMap = parseKeyMap(params.get("keys"));
+const game = new GameLog();
+// Ids of the moving bodies added after the Welcome: players who joined since.
+const joined = new Set<bigint>();
 
 const api = {
   status: "connecting" as "connecting" | "connected" | "failed",
@@ -55,6 +63,19 @@ const api = {
   viewHashesChecked: 0,
   inputsSent: 0,
   camera: undefined as Camera | undefined,
+  /** Game messages sent by the keys, received, and the last few received as text. */
+  gameMessagesSent: 0,
+  gameMessagesReceived: 0,
+  gameMessages: [] as { tick: number; text: string }[],
+  keyErrors: keyMap.errors,
+  /** The panel's lines as last drawn. */
+  panel: [] as string[],
+  /** Every kinematic body as last drawn: id and position. */
+  kinematic: [] as { id: string; x: number; y: number }[],
+  /** Every sensor as last drawn: id and position. */
+  sensors: [] as { id: string; x: number; y: number }[],
+  /** The own body's position in the newest snapshot (a player's). */
+  own: undefined as { x: number; y: number } | undefined,
   /** Stops drawing, draws the newest snapshot as decoded (not interpolated), and
    * returns what it drew: the tick, the camera and every moving body. */
   pause(): { tick: number; camera: Camera; bodies: DrawnBody[] } | undefined {
@@ -74,6 +95,7 @@ const api = {
 
 function kindOf(id: bigint, still: boolean): DrawnBody["kind"] {
   if (!client.welcome?.spectator && id === client.welcome?.bodyId) return "own";
+  if (shapes.get(id)?.isKinematic) return "kinematic";
   return still ? "still" : "dynamic";
 }
 
@@ -103,16 +125,16 @@ function resize(): void {
   }
 }
 
-function drawShape(shape: BodyShape, x: number, y: number, colour: palette.Rgb): void {
+function drawShape(shape: BodyShape, x: number, y: number, colour: palette.Rgb, alpha = 1): void {
   const cam = camera!;
   const [px, py] = toPixel(cam, x, y);
-  context.fillStyle = palette.css(colour);
+  context.fillStyle = palette.css(colour, alpha);
   if (shape.shape === "box") {
     const w = 2 * shape.halfExtents.x * cam.scale;
     const h = 2 * shape.halfExtents.y * cam.scale;
     context.fillRect(px - w / 2, py - h / 2, w, h);
     // The edge, one pixel inside, in the background's colour: stacked boxes read as boxes.
-    if (w > 4 && h > 4) {
+    if (w > 4 && h > 4 && alpha === 1) {
       context.strokeStyle = palette.css(palette.BACKGROUND);
       context.lineWidth = 1;
       context.strokeRect(px - w / 2 + 0.5, py - h / 2 + 0.5, w - 1, h - 1);
@@ -129,14 +151,80 @@ function draw(bodies: DrawnBody[]): void {
   context.fillStyle = palette.css(palette.BACKGROUND);
   context.fillRect(0, 0, canvas.width, canvas.height);
   if (!camera) return;
-  for (const shape of shapes.values()) if (shape.isStatic) drawShape(shape, shape.position.x, shape.position.y, palette.STATIC);
-  const colours = { dynamic: palette.DYNAMIC, still: palette.SLEEPING, own: palette.OWN };
+  for (const shape of shapes.values()) {
+    if (shape.isStatic && !shape.isSensor) drawShape(shape, shape.position.x, shape.position.y, palette.STATIC);
+  }
+  // A kinematic body no snapshot carried is drawn where its shape was sent.
+  const at = new Map<bigint, { x: number; y: number }>();
+  for (const shape of shapes.values()) if (shape.isKinematic) at.set(shape.bodyId, shape.position);
+  for (const body of bodies) at.set(BigInt(body.id), body);
+  api.kinematic = [];
+  for (const shape of shapes.values()) {
+    const p = at.get(shape.bodyId);
+    if (!shape.isKinematic || shape.isSensor || !p) continue;
+    drawShape(shape, p.x, p.y, palette.KINEMATIC);
+    api.kinematic.push({ id: String(shape.bodyId), x: p.x, y: p.y });
+  }
+  const colours = { dynamic: palette.DYNAMIC, still: palette.SLEEPING, own: palette.OWN, kinematic: palette.KINEMATIC };
   for (const body of bodies) {
     const shape = shapes.get(BigInt(body.id));
-    if (shape && !shape.isStatic) drawShape(shape, body.x, body.y, colours[body.kind]);
+    if (shape && !shape.isStatic && !shape.isKinematic && !shape.isSensor) drawShape(shape, body.x, body.y, colours[body.kind]);
   }
+  // Sensors over what is under them, translucent.
+  api.sensors = [];
+  for (const shape of shapes.values()) {
+    const p = shape.isStatic ? shape.position : at.get(shape.bodyId);
+    if (!shape.isSensor || !p) continue;
+    drawShape(shape, p.x, p.y, palette.SENSOR, palette.SENSOR_ALPHA);
+    api.sensors.push({ id: String(shape.bodyId), x: p.x, y: p.y });
+  }
+  drawMarks(bodies, at);
   drawPanel();
   api.framesDrawn += 1;
+}
+
+// A player's body's label: the own body's, and those of the moving bodies added since
+// the Welcome (players who joined; the protocol does not say which of the Welcome's
+// bodies are players'): the name, else the id; " (you)" on the own body.
+function label(shape: BodyShape): string {
+  const own = !client.welcome?.spectator && shape.bodyId === client.welcome?.bodyId;
+  if (!own && (!joined.has(shape.bodyId) || shape.isSensor)) return "";
+  const text = shape.name || `#${shape.bodyId}`;
+  return own ? `${text} (you)` : text;
+}
+
+// The ring around the own body, and the labels above the moving bodies.
+function drawMarks(bodies: DrawnBody[], at: Map<bigint, { x: number; y: number }>): void {
+  const cam = camera!;
+  const own = bodies.find((b) => b.kind === "own");
+  const ownShape = own && shapes.get(BigInt(own.id));
+  if (own && ownShape) {
+    const [px, py] = toPixel(cam, own.x, own.y);
+    context.strokeStyle = palette.css(palette.OWN_MARKER);
+    context.lineWidth = 2;
+    context.beginPath();
+    if (ownShape.shape === "box") {
+      const w = 2 * ownShape.halfExtents.x * cam.scale;
+      const h = 2 * ownShape.halfExtents.y * cam.scale;
+      context.rect(px - w / 2 - 3, py - h / 2 - 3, w + 6, h + 6);
+    } else {
+      context.arc(px, py, ownShape.radius * cam.scale + 3, 0, 2 * Math.PI);
+    }
+    context.stroke();
+  }
+  const size = Math.round(11 * devicePixelRatio);
+  context.font = `${size}px monospace`;
+  context.textAlign = "center";
+  context.fillStyle = palette.css(palette.TEXT);
+  for (const shape of shapes.values()) {
+    const p = at.get(shape.bodyId);
+    const text = p ? label(shape) : "";
+    if (!p || !text) continue;
+    const top = shape.shape === "box" ? shape.halfExtents.y : shape.radius;
+    const [px, py] = toPixel(cam, p.x, p.y + top);
+    context.fillText(text, px, py - 4);
+  }
+  context.textAlign = "start";
 }
 
 function drawPanel(): void {
@@ -147,7 +235,14 @@ function drawPanel(): void {
     `${rate.kbitPerSecond.toFixed(1)} kbit/s  ${newest?.bodies.length ?? 0} bodies`,
   ];
   if (!spectate) lines.push("arrow keys: steer");
+  if (keyMap.map.size > 0) {
+    const bound = [...keyMap.map].map(([k, p]) => `${k} ${new TextDecoder().decode(p)}`).join("  ");
+    lines.push(spectate ? "game keys: a spectator sends none" : `game keys: ${bound}`);
+  }
+  for (const error of keyMap.errors) lines.push(`keys: ${error}`);
+  if (game.sent > 0 || game.received > 0 || keyMap.map.size > 0) lines.push(...game.lines());
   if (api.error) lines.push(api.error);
+  api.panel = lines;
   const size = Math.round(13 * devicePixelRatio);
   context.font = `${size}px monospace`;
   const width = Math.max(...lines.map((l) => context.measureText(l).width)) + size;
@@ -192,7 +287,23 @@ function steer(): void {
   if (client.sendInput(tick, ax, ay)) api.inputsSent += 1;
 }
 
+// A key of the map: its message, for the next tick (as an input for it would go).
+function sendBound(event: KeyboardEvent): boolean {
+  const payload = keyMap.map.get(keyName(event.key));
+  if (!payload) return false;
+  event.preventDefault();
+  const welcome = client.welcome;
+  if (event.repeat || !welcome || welcome.spectator || client.state !== ConnectionState.Connected) return true;
+  const tick = (newest?.tick ?? welcome.currentTick) + 1;
+  if (client.sendGameMessage(tick, payload)) {
+    game.sent += 1;
+    api.gameMessagesSent = game.sent;
+  }
+  return true;
+}
+
 function onKey(event: KeyboardEvent, down: boolean): void {
+  if (down && sendBound(event)) return;
   if (!event.key.startsWith("Arrow")) return;
   event.preventDefault();
   const had = keys.has(event.key);
@@ -214,12 +325,23 @@ async function receive(): Promise<void> {
       if (client.state !== ConnectionState.Connected) break;
       continue;
     }
-    for (const shape of snapshot.added) shapes.set(shape.bodyId, shape);
-    for (const id of snapshot.removed) shapes.delete(id);
+    for (const shape of snapshot.added) {
+      shapes.set(shape.bodyId, shape);
+      if (!shape.isStatic) joined.add(shape.bodyId);
+    }
+    for (const id of snapshot.removed) {
+      shapes.delete(id);
+      joined.delete(id);
+    }
+    game.add(client.takeGameMessages());
+    api.gameMessagesReceived = game.received;
+    api.gameMessages = [...game.recent];
     playout!.push(snapshot, performance.now() / 1000);
     previous = newest;
     newest = snapshot;
     api.newestTick = snapshot.tick;
+    const own = snapshot.bodies.find((b) => !client.welcome?.spectator && b.bodyId === client.welcome?.bodyId);
+    if (own) api.own = { x: own.position.x, y: own.position.y };
     api.inSync = snapshot.inSync;
     api.desyncs = client.stats.desyncs;
     api.viewHashesChecked = client.stats.viewHashesChecked;

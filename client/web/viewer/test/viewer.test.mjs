@@ -4,7 +4,6 @@
 // arrow key held in the page moves the page's own body, as that client sees it.
 import { after, before, describe, test } from "node:test";
 import assert from "node:assert/strict";
-import { writeFileSync } from "node:fs";
 import WebSocket from "ws";
 import { Client, boxHalfSize } from "@physics/client";
 import { startServer } from "../../client/test/server.mjs";
@@ -81,7 +80,7 @@ describe("the viewer", () => {
   test("a spectator draws the server's bodies where the server has them", async (t) => {
     // Lockstep: the world steps only while the player below sends inputs, so that
     // it stands still for the screenshot.
-    const server = await startServer(["--lockstep"]);
+    const server = await startServer(["--lockstep", "--lockstep-pace", "asap"]);
     const beside = await watcher(server.url, { spectate: true });
     const { page, errors } = await openViewer(browser, server.url, "&spectate=1");
     try {
@@ -115,10 +114,7 @@ describe("the viewer", () => {
         truth.bodies.map((b) => [String(b.bodyId), b.position.x, b.position.y]),
       );
 
-      const png = await page.screenshot();
-      // docs/images/web-viewer.png is this picture (docs/WEB.md).
-      if (process.env.WEB_VIEWER_SCREENSHOT) writeFileSync(process.env.WEB_VIEWER_SCREENSHOT, png);
-      const shot = pixels(png);
+      const shot = pixels(await page.screenshot());
       assert.equal(shot.width, 960);
       const welcome = beside.client.welcome;
       const camera = fit(welcome.bodies, shot.width, shot.height);

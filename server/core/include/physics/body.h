@@ -14,7 +14,10 @@ enum class Shape : std::uint8_t { Circle, Box };
 // Static: never moves, infinite mass. Dynamic: moved by gravity, its acceleration
 // and its contacts. Kinematic: moved by its velocity alone (set by code), with
 // infinite mass: it pushes and carries dynamic bodies, and nothing pushes it back;
-// it meets neither static nor other kinematic bodies.
+// it meets neither static nor other kinematic bodies. A dynamic body it pins
+// against a static body is crushed: the static body wins, the dynamic body stays on
+// its near side and the kinematic body overlaps it, and World::crush_events reports
+// it (physics/crush_events.h).
 enum class Motion : std::uint8_t { Static, Dynamic, Kinematic };
 
 // Which pairs of bodies may collide (Box2D's b2Filter). Two bodies of the same

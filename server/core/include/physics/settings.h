@@ -79,10 +79,14 @@ struct WorldSettings {
   bool profile = false;
 };
 
+// The largest gravity on either axis, in m/s^2 (a hundred thousand g): beyond it a
+// step's arithmetic can overflow to infinity within a few steps.
+inline constexpr double kMaxGravity = 1.0e6;
+
 // Why a WorldSettings was refused.
 enum class SettingsError : std::uint8_t {
   None,
-  NonFiniteGravity,
+  BadGravity,     // not finite, or beyond kMaxGravity on an axis
   BadSubsteps,    // < 1 or > 64
   BadSlop,        // not finite, < 0 or > 0.1
   BadIterations,  // < 1 or > 64

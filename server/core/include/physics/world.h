@@ -12,6 +12,9 @@
 
 #include "physics/body.h"
 #include "physics/contact_events.h"
+#include "physics/crush_events.h"
+#include "physics/game_state.h"
+#include "physics/query.h"
 #include "physics/sensor_events.h"
 #include "physics/settings.h"
 #include "physics/stats.h"
@@ -119,8 +122,17 @@ class World {
 
   // 64-bit hash of every body's id, shape, motion, position, velocity, acceleration
   // and size, and its filter and sensor flag where not the default, in id order,
-  // over the exact bit patterns. Equal states give equal hashes. Names are not in it.
+  // over the exact bit patterns, then the game state when it is not empty (every
+  // variable and timer in key order). Equal states give equal hashes. Names are not
+  // in it.
   std::uint64_t state_hash() const;
+
+  // The game's variables and timers (physics/game_state.h): part of the world's
+  // state, so save, restore, to_bytes, from_bytes and the state hash carry them.
+  // The world itself never reads or changes them; game rules do.
+  GameState& game_state();
+  const GameState& game_state() const;
+
   // Steps taken since creation.
   std::uint64_t step_count() const;
 
@@ -144,6 +156,36 @@ class World {
   const std::vector<SensorEvent>& sensor_events() const;
   // (Sensor, visitor) pairs overlapping after the last step.
   std::size_t sensor_overlaps() const;
+
+  // Crush events (physics/crush_events.h says when a body is pinned): the last
+  // step's (kinematic, dynamic, static) triples, each once, ordered by their ids.
+  // A world without kinematic bodies does no work for them.
+  const std::vector<CrushEvent>& crush_events() const;
+
+  // Queries (physics/query.h says exactly what each finds, how bad input is refused
+  // and what they cost). Const, and each returns its answer by value: rules may add
+  // or remove bodies while going through it. Not to be called from several threads
+  // at once: the first query after a change files the bodies in grids.
+  // The first body a ray from `origin` along `translation` meets, or all it meets
+  // (by fraction, then id).
+  std::optional<CastHit> cast_ray(Vec2 origin, Vec2 translation, const QueryFilter& filter = {},
+                                  QueryError* error = nullptr) const;
+  std::vector<CastHit> cast_ray_all(Vec2 origin, Vec2 translation, const QueryFilter& filter = {},
+                                    QueryError* error = nullptr) const;
+  // The bodies overlapping a box, a circle or a point, ascending id.
+  std::vector<BodyId> overlap_box(const Aabb& box, const QueryFilter& filter = {},
+                                  QueryError* error = nullptr) const;
+  std::vector<BodyId> overlap_circle(Vec2 center, double radius, const QueryFilter& filter = {},
+                                     QueryError* error = nullptr) const;
+  std::vector<BodyId> overlap_point(Vec2 point, const QueryFilter& filter = {},
+                                    QueryError* error = nullptr) const;
+  // The first body a circle or a box moved from `center` along `translation` meets.
+  std::optional<CastHit> cast_circle(Vec2 center, double radius, Vec2 translation,
+                                     const QueryFilter& filter = {},
+                                     QueryError* error = nullptr) const;
+  std::optional<CastHit> cast_box(Vec2 center, Vec2 half_extents, Vec2 translation,
+                                  const QueryFilter& filter = {},
+                                  QueryError* error = nullptr) const;
 
   const WorldSettings& settings() const;
   const StageCounters& counters() const;

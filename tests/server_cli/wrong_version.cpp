@@ -1,0 +1,20 @@
+// Rules built against another version of the package: the entry point as
+// PHYSICS_GAME_RULES defines it, with the version an older package recorded.
+#include <memory>
+
+#include "server/rules_plugin.h"
+
+namespace {
+
+std::shared_ptr<server::GameRules> make_rules(const scene::SceneDef& /*scene*/) {
+  return std::make_shared<server::GameRules>();
+}
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const server::RulesPluginInfo*
+physics_game_rules_v1() {
+  static const server::RulesPluginInfo info{PHYSICS_RULES_PLUGIN_ABI, "0.0.1", PHYSICS_RULES_STDLIB,
+                                            &make_rules};
+  return &info;
+}
