@@ -61,8 +61,10 @@ class Bytes {
     if (length == 0) return fail("a name is empty");
     if (length > GameState::kMaxNameBytes) return fail("a name is over 64 bytes");
     if (in_.size() - at_ < length) return fail("the bytes end in the middle of a name");
-    key.name.assign(reinterpret_cast<const char*>(in_.data() + at_), length);
-    at_ += length;
+    // At most kMaxNameBytes here, so it fits a size_t on every platform (wasm32 too).
+    const auto bytes = static_cast<std::size_t>(length);
+    key.name.assign(reinterpret_cast<const char*>(in_.data() + at_), bytes);
+    at_ += bytes;
     if (!take(key.index)) return false;
     if (previous && !(*previous < key)) return fail("its keys are out of order or repeated");
     return true;

@@ -27,7 +27,12 @@ class Fnv1a64;
 struct GameKey {
   std::string name;
   std::uint64_t index = 0;
-  auto operator<=>(const GameKey&) const = default;
+  // Written out rather than defaulted with <=>: the libc++ of Debian's emscripten
+  // has no three-way comparison for std::string.
+  bool operator<(const GameKey& other) const {
+    const int by_name = name.compare(other.name);
+    return by_name != 0 ? by_name < 0 : index < other.index;
+  }
   bool operator==(const GameKey&) const = default;
 };
 
