@@ -44,6 +44,16 @@ void ContactTracker::removed(std::uint32_t slot) {
   removed_flag_[slot] = 1;
 }
 
+bool ContactTracker::removals_consistent(std::size_t slots) const {
+  if (removed_flag_.size() > slots) return false;
+  std::vector<std::uint8_t> unlisted(removed_flag_);
+  for (const std::uint32_t slot : removed_) {
+    if (slot >= unlisted.size() || unlisted[slot] != 1) return false;
+    unlisted[slot] = 0;
+  }
+  return std::all_of(unlisted.begin(), unlisted.end(), [](std::uint8_t f) { return f == 0; });
+}
+
 std::size_t ContactTracker::finish(std::uint64_t step, const std::vector<Body>& bodies) {
   // The first touch of each pair (a pair may be noted by a swept hit and by the
   // overlap test, and once per sub-step), in pair order: a step's touches name each

@@ -33,6 +33,11 @@ class ContactTracker {
 
   const std::vector<ContactEvent>& events() const { return events_; }
   std::size_t contact_count() const { return current_.size(); }
+  // Whether the removals carried over are as removed() leaves them in a world of
+  // `slots` body slots: each removed slot listed once and flagged, no other slot
+  // flagged (world_bytes.cpp checks what it reads; finish clears the flags by the
+  // list).
+  bool removals_consistent(std::size_t slots) const;
   // Walks what carries over between steps, for World::to_bytes and from_bytes
   // (world_bytes.cpp, the only user).
   template <class A>

@@ -59,7 +59,14 @@ inline void MovePass::run(int first_axis, int last_axis) {
           x_end,         v_end};
       sweep(p, b, axis, path);
       component(b.position, axis) = path.x1;
-      component(b.velocity, axis) = path.v1;
+      // A bounce re-integrates the rest of the sub-step from the contact, past the
+      // free motion's speed cap: the world stays finite only if it is capped again.
+      double v1 = path.v1;
+      if (std::fabs(v1) > s_.max_speed) {
+        v1 = v1 < 0.0 ? -s_.max_speed : s_.max_speed;
+        ++w_.counters.speed_clamps;
+      }
+      component(b.velocity, axis) = v1;
     }
   }
 }

@@ -444,19 +444,31 @@ std::string check_read_state(const WorldImpl& w) {
   }
   if (!w.sensor_tracker.slots_below(slots))
     return "a sensor's overlap names a slot that does not exist";
-  if (!w.lists_dirty_) {
-    // Lists that are current hold each living body once, where its motion puts it.
+  if (!w.contact_tracker.removals_consistent(slots)) {
+    return "its contact events' removed bodies are not listed as a removal lists them";
+  }
+  if (!w.lists_dirty_ || !w.rebuild_all_) {
+    // The lists as the last rebuild left them hold each living body once, where its
+    // motion puts it, the static and sleeping ones by ascending slot. Until the next
+    // rebuild only the bodies that fell asleep or woke since (changed_slots_) may be
+    // elsewhere: unless a whole rebuild is due, the next one moves only them.
+    std::vector<std::uint8_t> changed(slots, 0);
+    if (w.lists_dirty_) {
+      for (const std::uint32_t s : w.changed_slots_) changed[s] = 1;
+    }
     std::vector<std::uint8_t> listed(slots, 0);
     for (const std::uint32_t s : w.lists.active) {
       const Body& b = w.bodies[s];
-      if (listed[s]++ || !b.alive || !b.is_dynamic() || !b.awake) {
+      if (listed[s]++ || (!changed[s] && (!b.alive || !b.is_dynamic() || !b.awake))) {
         return "the awake list holds a body that is not awake, or one twice";
       }
     }
-    for (const std::uint32_t s : w.lists.fixed) {
+    for (std::size_t f = 0; f < w.lists.fixed.size(); ++f) {
+      const std::uint32_t s = w.lists.fixed[f];
       const Body& b = w.bodies[s];
-      if (listed[s]++ || !b.alive || (b.is_dynamic() && b.awake)) {
-        return "the static list holds a body that moves, or one twice";
+      if (listed[s]++ || (f > 0 && s < w.lists.fixed[f - 1]) ||
+          (!changed[s] && (!b.alive || (b.is_dynamic() && b.awake)))) {
+        return "the static list holds a body that moves, or one twice, or is out of order";
       }
     }
   }
