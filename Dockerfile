@@ -10,23 +10,25 @@ RUN apt-get update \
       build-essential cmake ninja-build pkg-config \
       libasio-dev libprotobuf-dev protobuf-compiler \
       libcli11-dev libspdlog-dev libfmt-dev libcpp-httplib-dev libwebsocketpp-dev \
+      libsodium-dev \
  && rm -rf /var/lib/apt/lists/*
 WORKDIR /src
 COPY . .
 RUN cmake -S . -B /build -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DPHYSICS_BUILD_TESTS=OFF -DPHYSICS_BUILD_BENCH=OFF \
- && cmake --build /build --target physics-server physics-client
+ && cmake --build /build --target physics-server physics-client physics-ticket
 
 FROM debian:12-slim
-# The shared libraries the two programs link (Debian 12's packages), and curl for
+# The shared libraries the programs link (Debian 12's packages), and curl for
 # the health check.
 RUN apt-get update \
  && DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends \
-      libprotobuf32 libspdlog1.10 libfmt9 libcpp-httplib0.11 curl ca-certificates \
+      libprotobuf32 libspdlog1.10 libfmt9 libcpp-httplib0.11 libsodium23 curl ca-certificates \
  && rm -rf /var/lib/apt/lists/* \
  && useradd --system --uid 10001 --no-create-home --shell /usr/sbin/nologin physics
 COPY --from=build /build/server/physics-server /usr/local/bin/physics-server
 COPY --from=build /build/client/physics-client /usr/local/bin/physics-client
+COPY --from=build /build/server/ticket/physics-ticket /usr/local/bin/physics-ticket
 COPY scenes /usr/local/share/physics/scenes
 USER physics
 EXPOSE 7777/tcp 9100/tcp

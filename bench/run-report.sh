@@ -22,7 +22,7 @@ runs=(grid long stages pyramid rain-interleaved rain-iterations rain-timeline
       pile-rain-timeline pile-rain-box2d pile-rain-box2d-mu0.2 micro netbench net-paths
       still-world replay-size contact-events soak core-comparison core-comparison-relaxed
       rain-position-passes det-math-comparison core-speed pair-reuse wasm-speed save-restore relay-bandwidth vocabulary-cost
-      web-client prediction rollback-budget ws-vs-tcp lobby-rejoiner query-cost)
+      web-client prediction rollback-budget ws-vs-tcp lobby-rejoiner query-cost game-prediction)
 declare -A writes=(
   [grid]="accuracy.csv accuracy-pareto.svg"
   [long]="accuracy-long.csv"
@@ -62,6 +62,7 @@ declare -A writes=(
   [prediction]="netbench-prediction.csv"
   [rollback-budget]="rollback-budget.json"
   [query-cost]="query-cost.csv"
+  [game-prediction]="game-prediction.csv"
   [ws-vs-tcp]="ws-vs-tcp.csv"
   [lobby-rejoiner]="lobby-rejoiner.csv"
   # run-netbench.sh names its files after its own runs: netbench-NAME.csv.
@@ -243,6 +244,9 @@ run_query-cost() {  # each world query on rained piles of 1,000 and 16,000 circl
   [[ -x "$micro" ]] || { echo "run-report: $micro not built (ninja -C $build physics-microbench)" >&2; return 1; }
   "$micro" --benchmark_filter='BM_Query' --benchmark_min_time=0.2 \
     --benchmark_out="$out/query-cost.csv" --benchmark_out_format=csv
+}
+run_game-prediction() {  # goal rush's messages predicted by the rules against not (about 11 minutes)
+  "$here/game-prediction.sh" "$build" 300
 }
 run_netbench() { BUILD_DIR="$build" "$here/run-netbench.sh"; }
 run_net-paths() {  # lockstep and fixed rate through the link conditioner (about 8 minutes)

@@ -1,7 +1,8 @@
 # Run after a test executable is built (cmake -P, from physics_gtest_suites): lists its
 # GoogleTest suites and writes CTEST_FILE, one ctest test per suite.
-# Inputs: EXECUTABLE, WORKING_DIR, CTEST_FILE, LABELS (a list), CASE_TIMEOUT (seconds
-# per test case, may be empty), DISCOVERY_TIMEOUT.
+# Inputs: EXECUTABLE, WORKING_DIR, CTEST_FILE, LABELS (a list), LABELLED_SUITES (a list
+# of "Suite=label,label": labels of those suites only), CASE_TIMEOUT (seconds per test
+# case, may be empty), DISCOVERY_TIMEOUT.
 execute_process(
   COMMAND "${EXECUTABLE}" --gtest_list_tests
   WORKING_DIRECTORY "${WORKING_DIR}"
@@ -36,14 +37,24 @@ foreach(line IN LISTS lines)
   endif()
 endforeach()
 
+foreach(entry IN LISTS LABELLED_SUITES)
+  string(REGEX MATCH "^([^=]+)=(.*)$" matched "${entry}")
+  string(REPLACE "," ";" extra_${CMAKE_MATCH_1} "${CMAKE_MATCH_2}")
+  # A suite named in the CMakeLists that the executable does not have is a typo there.
+  if(NOT DEFINED count_${CMAKE_MATCH_1})
+    message(FATAL_ERROR "${EXECUTABLE} has no suite ${CMAKE_MATCH_1} to label")
+  endif()
+endforeach()
+
 set(script "")
 foreach(suite IN LISTS suites)
   set(name "${suite}.*")
+  set(suite_labels ${LABELS} ${extra_${suite}})
   string(APPEND script
     "add_test([==[${name}]==] [==[${EXECUTABLE}]==] [==[--gtest_filter=${name}]==])\n"
     "set_tests_properties([==[${name}]==] PROPERTIES WORKING_DIRECTORY [==[${WORKING_DIR}]==]")
-  if(LABELS)
-    string(APPEND script " LABELS [==[${LABELS}]==]")
+  if(suite_labels)
+    string(APPEND script " LABELS [==[${suite_labels}]==]")
   endif()
   if(CASE_TIMEOUT)
     math(EXPR timeout "${CASE_TIMEOUT} * ${count_${suite}}")

@@ -28,11 +28,15 @@ case "${1:-}" in
   ccache
   libasio-dev libprotobuf-dev protobuf-compiler
   libgtest-dev libgmock-dev libbenchmark-dev
+  # The client's twins' shared test vectors (tests/vectors/*.json), read by the gtests.
+  nlohmann-json3-dev
   libcli11-dev libspdlog-dev libfmt-dev
   # The server's /metrics endpoint and its Agones SDK calls (HTTP).
   libcpp-httplib-dev
   # The WebSocket port (header-only).
   libwebsocketpp-dev
+  # Connect tickets (shared/ticket: HMAC-SHA-256, base64url).
+  libsodium-dev
   # Peer engines, measured beside ours in physics-bench.
   libbox2d-dev libchipmunk-dev
   # Plots in docs/ACCURACY.md.

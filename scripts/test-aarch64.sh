@@ -9,6 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . scripts/lib/cross-hashes.sh
+source scripts/lib/compiler-cache.sh
 cross_dir="${AARCH64_BUILD_DIR:-build-aarch64}"
 work="$cross_dir/hashes"
 
@@ -19,7 +20,8 @@ cmake -S . -B "$cross_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_SYSTEM_NAME=Linux -DCMAKE_SYSTEM_PROCESSOR=aarch64 \
   -DCMAKE_C_COMPILER=aarch64-linux-gnu-gcc -DCMAKE_CXX_COMPILER=aarch64-linux-gnu-g++ \
   -DCMAKE_EXE_LINKER_FLAGS=-static -DPHYSICS_CORE_ONLY=ON \
-  -DPHYSICS_BUILD_TESTS=OFF -DPHYSICS_BUILD_BENCH=OFF -DPHYSICS_WARNINGS_AS_ERRORS=ON
+  -DPHYSICS_BUILD_TESTS=OFF -DPHYSICS_BUILD_BENCH=OFF -DPHYSICS_WARNINGS_AS_ERRORS=ON \
+  "${compiler_cache[@]}"
 cmake --build "$cross_dir" -j "$(nproc)" --target physics-hashes
 
 runner=("qemu-aarch64" "$cross_dir/portable/physics-hashes")

@@ -8,7 +8,8 @@
 #   scripts/test-fuzz.sh --long     the nightly (or local) run: 600 s each, unless
 #                                   FUZZ_SECONDS says otherwise
 #   scripts/test-fuzz.sh --seeds    rewrite tests/fuzz/corpus/ from real messages
-# FUZZ_HARNESSES="replay scene" runs only those (default: all seven).
+# FUZZ_HARNESSES="replay scene" runs only those (default: all seven); FUZZ_JOBS=1 runs
+# them one at a time (default: as many at once as there are cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/lib/clang-build.sh
@@ -30,18 +31,37 @@ if [ "${1:-}" = "--seeds" ]; then
 fi
 
 mkdir -p "$build_dir/artifacts"
-for name in "${harnesses[@]}"; do
-  # New inputs go to a scratch corpus; the committed seeds are only read.
-  work="$build_dir/corpus/$name"
+# fuzz NAME: one harness for $seconds from its seeds; its output in $build_dir/NAME.log and
+# its exit status in $build_dir/NAME.status. New inputs go to a scratch corpus; the
+# committed seeds are only read.
+fuzz() {
+  local name="$1" work="$build_dir/corpus/$1" status=0
   mkdir -p "$work"
-  echo "fuzz: $name for $seconds s"
   "$build_dir/tests/fuzz/${name}_fuzz" "$work" "tests/fuzz/corpus/$name" \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-    -artifact_prefix="$build_dir/artifacts/$name-" 2>"$build_dir/$name.log" || {
+    -artifact_prefix="$build_dir/artifacts/$name-" 2>"$build_dir/$name.log" || status=$?
+  echo "$status" >"$build_dir/$name.status"
+}
+
+# A libFuzzer run uses one core: FUZZ_JOBS harnesses (default: one a core) run side by
+# side, each still for its whole time.
+jobs_max="${FUZZ_JOBS:-$(nproc)}"
+for name in "${harnesses[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs_max" ]; do wait -n || true; done
+  echo "fuzz: $name for $seconds s"
+  rm -f "$build_dir/$name.status"
+  fuzz "$name" &
+done
+wait
+
+failed=0
+for name in "${harnesses[@]}"; do
+  if [ "$(cat "$build_dir/$name.status" 2>/dev/null)" != 0 ]; then
     tail -n 60 "$build_dir/$name.log"
     echo "fuzz: $name FAILED; the input is in $build_dir/artifacts/" >&2
-    exit 1
-  }
-  grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$build_dir/$name.log" | tr '\n' ' '
-  echo
+    failed=1
+    continue
+  fi
+  echo "fuzz: $name $(grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$build_dir/$name.log" | tr '\n' ' ')"
 done
+exit "$failed"

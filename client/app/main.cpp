@@ -14,6 +14,7 @@
 
 #include "client/client.h"
 #include "client/game_message_plan.h"
+#include "client/game_rules_loader.h"
 #include "client/input_pacer.h"
 #include "client/load.h"
 #include "pattern.h"
@@ -41,6 +42,9 @@ struct Options {
   int connect_timeout_ms = 5000;
   int input_change_ms = 0;
   client::GameMessagePlan messages;
+  std::string rules_file;  // --rules: the game's rules, run in the prediction
+  std::string scene_file;  // --scene: the scene they are made for
+  client::RulesMaker make_rules;
 };
 
 int run_single(const Options& options) {
@@ -117,6 +121,7 @@ int run_bots(const Options& options) {
   load.predict = options.predict;
   load.prediction = options.prediction;
   load.messages = options.messages;
+  load.make_rules = options.make_rules;
   const client::LoadReport report = client::run_load(load);
   fmt::print("{}\n", client_app::format_load_report(report, options.json));
   if (report.bots_connected == 0) {
@@ -224,6 +229,16 @@ int main(int argc, char** argv) {
                "Print contact events: a player's own body's, a spectator's of every body");
   app.add_option("--contact-bodies", contact_bodies,
                  "Spectators: print the contact events of these body ids only (at most 64)");
+  auto* rules = app.add_option("--rules", options.rules_file,
+                               "With --predict: run this game's rules library (the one "
+                               "physics-server --rules runs) in the prediction, so that the own "
+                               "game messages show at once (docs/CLIENT.md)")
+                    ->check(CLI::ExistingFile);
+  app.add_option("--scene", options.scene_file,
+                 "With --rules: the game's scene file the rules are made for (default: the "
+                 "built-in scene)")
+      ->check(CLI::ExistingFile)
+      ->needs(rules);
   auto* game_message =
       app.add_option("--game-message", options.messages.payloads,
                      "Send this game message (docs/PROTOCOL.md 3.9) just before the first input; "
@@ -269,11 +284,25 @@ int main(int argc, char** argv) {
       return kExitUsage;
     }
   }
+  if (!options.rules_file.empty()) {
+    if (!options.predict) {
+      fmt::print(stderr,
+                 "physics-client: --rules runs the rules in the prediction: add --predict\n");
+      return kExitUsage;
+    }
+    std::string why;
+    options.make_rules = client::load_game_rules(options.rules_file, options.scene_file, &why);
+    if (!options.make_rules) {
+      fmt::print(stderr, "physics-client: --rules: {}\n", why);
+      return kExitUsage;
+    }
+  }
   if (options.predict && options.bots == 0) {
     client_app::PredictingRun run;
     run.config.client = options.client;
     run.config.pacer = options.pacer;
     run.config.prediction = options.prediction;
+    if (options.make_rules) run.config.rules = options.make_rules();
     if (options.accel.size() == 2)
       run.pattern.constant = client::Vec2{options.accel[0], options.accel[1]};
     run.messages = options.messages;

@@ -46,8 +46,11 @@ int run_predicting(const PredictingRun& run) {
   fmt::print(stderr, "{}\n", format_welcome(player.welcome(), false));
   if (run.json) fmt::print("{}\n", format_welcome(player.welcome(), true));
   client::GameMessageSender messages(run.messages);
+  const client::GameMessageSender::Send send = [&](std::uint64_t tick, const std::string& payload) {
+    return player.send_game_message(tick, payload);
+  };
   const auto input = [&](std::uint64_t tick) {
-    messages.before_input(player.connection(), tick, std::chrono::steady_clock::now());
+    messages.before_input(send, tick, std::chrono::steady_clock::now());
     return run.pattern.at(tick);
   };
   const auto snapshot_timeout = std::max(

@@ -89,7 +89,8 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         "\"largest_smoothed_correction_m\":{:.6f},\"desyncs\":{},\"resyncs\":{},"
         "\"frame_cpu_ms_median\":{:.3f},\"frame_cpu_ms_p99\":{:.3f},\"frames\":{},"
         "\"game_messages_sent\":{},\"game_messages_received\":{},"
-        "\"bytes_per_second\":{:.0f}}}",
+        "\"own_message_visible_ms_median\":{:.3f},\"own_message_visible_ms_p99\":{:.3f},"
+        "\"rules_predicted\":{},\"bytes_per_second\":{:.0f}}}",
         report.bots_requested, report.bots_connected, report.seconds, report.latency_samples,
         report.latency_median_ms, report.latency_p99_ms, report.latency_max_ms,
         report.bytes_per_second_mean, report.bytes_per_second_min, report.bytes_per_second_max,
@@ -101,7 +102,9 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
         report.rollbacks_per_second, report.resimulated_ticks_per_second,
         report.largest_correction_m, report.largest_smoothed_correction_m, report.desyncs,
         report.resyncs, report.frame_cpu_ms_median, report.frame_cpu_ms_p99, report.frames,
-        report.game_messages_sent, report.game_messages_received, report.bytes_per_second_mean);
+        report.game_messages_sent, report.game_messages_received,
+        report.own_message_visible_ms_median, report.own_message_visible_ms_p99,
+        report.rules_predicted, report.bytes_per_second_mean);
   }
   std::string text = fmt::format(
       "bots {} (connected {}) over {:.2f} s\n"
@@ -122,6 +125,11 @@ std::string format_load_report(const client::LoadReport& report, bool json) {
   if (report.game_messages_sent > 0 || report.game_messages_received > 0) {
     text += fmt::format("\ngame messages: {} sent, {} received", report.game_messages_sent,
                         report.game_messages_received);
+    if (report.predicting) {
+      text += fmt::format("; message -> shown ({}): median {:.3f} ms, p99 {:.3f} ms",
+                          report.rules_predicted ? "rules predicted" : "confirmed",
+                          report.own_message_visible_ms_median, report.own_message_visible_ms_p99);
+    }
   }
   if (report.predicting) {
     text += fmt::format(

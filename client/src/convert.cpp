@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "wire/messages.h"
+#include "wire/relay_ticks.h"
 
 namespace client::convert {
 namespace {
@@ -40,6 +41,18 @@ static_assert(static_cast<int>(Encoding::Full) == pb::ENCODING_FULL);
 static_assert(static_cast<int>(Encoding::Inputs) == pb::ENCODING_INPUTS);
 
 std::vector<std::uint8_t> bytes(const std::string& text) { return {text.begin(), text.end()}; }
+
+std::vector<Player> players(const google::protobuf::RepeatedPtrField<pb::RelayPlayer>& message) {
+  std::vector<Player> out;
+  out.reserve(static_cast<std::size_t>(message.size()));
+  for (const pb::RelayPlayer& player : message) {
+    Player& made = out.emplace_back();
+    made.client_id = player.client_id();
+    made.body_id = player.body_id();
+    if (player.has_rules_input()) made.rules_input = vec(player.rules_input());
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -112,6 +125,8 @@ Welcome from_wire(const pb::Welcome& message) {
   welcome.seat = message.seat();
   welcome.seats = message.seats();
   welcome.world_state = bytes(message.world_state());
+  welcome.players = players(message.players());
+  welcome.rules_run_here = message.rules_run_here();
   return welcome;
 }
 
@@ -137,8 +152,14 @@ Snapshot header_from_wire(const pb::Snapshot& message) {
   snapshot.sensor_events_dropped = message.sensor_events_dropped();
   if (message.has_input_margin_us()) snapshot.input_margin_us = message.input_margin_us();
   snapshot.relay.reserve(static_cast<std::size_t>(message.relay_size()));
-  for (const auto& tick : message.relay()) snapshot.relay.push_back(tick.SerializeAsString());
+  // Each relayed tick with its number written in (the server leaves it implied).
+  for (int i = 0; i < message.relay_size(); ++i) {
+    pb::RelayTick tick = message.relay(i);
+    tick.set_tick(wire::relay_tick_number(message, i));
+    snapshot.relay.push_back(tick.SerializeAsString());
+  }
   snapshot.world_state = bytes(message.world_state());
+  snapshot.players = players(message.players());
   return snapshot;
 }
 
@@ -211,6 +232,7 @@ pb::ClientMessage make_hello(const ClientConfig& config) {
   options.view = to_wire(config.view);
   options.spectate = config.spectate;
   options.want_world = config.want_world;
+  options.run_rules = config.run_rules;
   options.sensor_events = config.sensor_events;
   options.seat = config.seat;
   if (config.contacts) {

@@ -8,8 +8,17 @@
 namespace viewer {
 
 void GameMessages::send_queued(client::Client& connection, std::uint64_t tick) {
+  send_queued(
+      [&connection](std::uint64_t at, const std::string& payload) {
+        return connection.send_game_message(at, payload);
+      },
+      tick);
+}
+
+void GameMessages::send_queued(const std::function<bool(std::uint64_t, const std::string&)>& send,
+                               std::uint64_t tick) {
   for (std::size_t n = 0; n < client::kMaxGameMessagesPerTick && !outgoing_.empty(); ++n) {
-    if (connection.send_game_message(tick, outgoing_.front())) ++sent_;
+    if (send(tick, outgoing_.front())) ++sent_;
     outgoing_.pop_front();
   }
 }

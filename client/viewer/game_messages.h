@@ -4,6 +4,7 @@
 // them), and the last few received from the game, for the panel.
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ class GameMessages {
   // Sends what was queued for `tick` (at most 4, the server's limit a tick; the rest
   // wait for the next). Called just before the tick's input.
   void send_queued(client::Client& connection, std::uint64_t tick);
+  // The same through `send` (a predicting client's, which predicts them too).
+  void send_queued(const std::function<bool(std::uint64_t, const std::string&)>& send,
+                   std::uint64_t tick);
   void received(std::vector<client::GameMessage> messages);
 
   std::uint64_t sent() const { return sent_; }

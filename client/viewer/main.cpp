@@ -6,11 +6,13 @@
 
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
 
 #include "client/client_recording.h"
+#include "client/game_rules_loader.h"
 #include "draw.h"
 #include "live_world.h"
 #include "options.h"
@@ -113,7 +115,18 @@ int run_live_window(const ViewerOptions& options) {
 }
 
 int run_predicted(const ViewerOptions& options) {
-  viewer::PredictedWorld world(options.client);
+  std::shared_ptr<server::GameRules> rules;
+  if (!options.rules_file.empty()) {
+    std::string why;
+    const client::RulesMaker make =
+        client::load_game_rules(options.rules_file, options.scene_file, &why);
+    if (!make) {
+      std::fprintf(stderr, "physics-view: --rules: %s\n", why.c_str());
+      return viewer::kExitUsage;
+    }
+    rules = make();
+  }
+  viewer::PredictedWorld world(options.client, std::move(rules));
   if (!world.connect(std::chrono::milliseconds(options.connect_timeout_ms))) {
     std::fprintf(stderr, "physics-view: cannot join: %s\n", world.error().c_str());
     return viewer::kExitFailure;

@@ -92,10 +92,22 @@ std::optional<int> parse_options(int argc, char** argv, ViewerOptions& options) 
                                 "Play a client recording (physics-view or physics-client "
                                 "--record) instead of joining a server")
                      ->check(CLI::ExistingFile);
-  app.add_flag("--predict", options.predict,
-               "Join as a player and draw what the predicting client shows it (the input "
-               "relay, the world run here; client/predicting_client.h) instead of watching")
-      ->excludes(replay);
+  auto* predict =
+      app.add_flag("--predict", options.predict,
+                   "Join as a player and draw what the predicting client shows it (the input "
+                   "relay, the world run here; client/predicting_client.h) instead of watching")
+          ->excludes(replay);
+  auto* rules = app.add_option("--rules", options.rules_file,
+                               "With --predict: run this game's rules library (the one "
+                               "physics-server --rules runs) in the prediction, so that the "
+                               "game's messages show at once")
+                    ->check(CLI::ExistingFile)
+                    ->needs(predict);
+  app.add_option("--scene", options.scene_file,
+                 "With --rules: the game's scene file the rules are made for (default: the "
+                 "built-in scene)")
+      ->check(CLI::ExistingFile)
+      ->needs(rules);
   app.add_option("--speed", options.speed, "With --replay: playback speed, in [1/64, 64]")
       ->capture_default_str()
       ->check(check_finite)

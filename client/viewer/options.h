@@ -32,6 +32,10 @@ struct ViewerOptions {
   // Join as a player and draw the predicting client's render state (its own input
   // shown at once, the others predicted, corrections smoothed).
   bool predict = false;
+  // With predict: the game's rules library and its scene, run in the prediction
+  // (client/game_rules_loader.h).
+  std::string rules_file;
+  std::string scene_file;
   // Keys bound to game messages (--key, --keys); any binding makes the viewer join
   // as a player (a spectator may not send game messages), as does --play.
   std::vector<KeyBinding> keys;

@@ -8,8 +8,10 @@
 namespace viewer {
 namespace {
 
-client::PredictingClientConfig predicting(client::ClientConfig config) {
+client::PredictingClientConfig predicting(client::ClientConfig config,
+                                          std::shared_ptr<server::GameRules> rules) {
   client::PredictingClientConfig out;
+  out.rules = std::move(rules);
   // A player: a spectator's prediction is the confirmed world, nothing of its own.
   config.spectate = false;
   // The world's state in the Welcome: about 300 bytes a body.
@@ -38,8 +40,9 @@ client::BodyShape shape_of(const phys::World& world, const phys::BodyState& body
 
 }  // namespace
 
-PredictedWorld::PredictedWorld(client::ClientConfig config)
-    : client_(predicting(std::move(config))) {}
+PredictedWorld::PredictedWorld(client::ClientConfig config,
+                               std::shared_ptr<server::GameRules> rules)
+    : client_(predicting(std::move(config), std::move(rules))) {}
 
 bool PredictedWorld::connect(std::chrono::milliseconds timeout) {
   if (!client_.connect(timeout)) {
@@ -52,8 +55,11 @@ bool PredictedWorld::connect(std::chrono::milliseconds timeout) {
 }
 
 void PredictedWorld::pump(std::chrono::steady_clock::time_point until) {
-  const auto hold_still = [this](std::uint64_t tick) {
-    messages_.send_queued(client_.connection(), tick);
+  const auto send = [this](std::uint64_t tick, const std::string& payload) {
+    return client_.send_game_message(tick, payload);
+  };
+  const auto hold_still = [&](std::uint64_t tick) {
+    messages_.send_queued(send, tick);
     return client::Vec2{};
   };
   while (!ended_) {
@@ -118,6 +124,17 @@ std::vector<std::string> PredictedWorld::panel(const client::PlayoutFrame& shown
       stats.resimulated_ticks, stats.largest_correction, stats.desyncs));
   lines.push_back(shapes_.bodies_line(shown, followed));
   for (std::string& line : messages_.panel_lines()) lines.push_back(std::move(line));
+  // The rules' messages of the ticks not confirmed yet, as this client predicts them;
+  // the server's replace them once it has stepped those ticks.
+  if (core.runs_rules()) {
+    const std::vector<server::OutgoingGameMessage> predicted = core.predicted_messages();
+    const std::size_t first =
+        predicted.size() > GameMessages::kShown ? predicted.size() - GameMessages::kShown : 0;
+    for (std::size_t i = first; i < predicted.size(); ++i) {
+      lines.push_back(fmt::format("  tick {} (predicted): {}", predicted[i].tick,
+                                  predicted[i].payload.substr(0, 60)));
+    }
+  }
   if (ended_) lines.push_back("disconnected: " + error());
   return lines;
 }

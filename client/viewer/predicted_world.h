@@ -4,6 +4,7 @@
 // its render state (the prediction, corrections smoothed) drawn as the frame.
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,7 +18,9 @@ namespace viewer {
 
 class PredictedWorld : public WorldSource {
  public:
-  explicit PredictedWorld(client::ClientConfig config);
+  // `rules`: the game's, run in the prediction (PredictingClientConfig::rules).
+  explicit PredictedWorld(client::ClientConfig config,
+                          std::shared_ptr<server::GameRules> rules = nullptr);
 
   // Connects and starts the world from the Welcome's; false with error() saying why.
   bool connect(std::chrono::milliseconds timeout);

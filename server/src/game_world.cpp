@@ -1,117 +1,117 @@
 // The game rules' handle on the world (game_rules.h): each change made on the
-// Simulation's world and reported as any change is, to snapshots and the relay.
+// host's world and reported to the host (the server passes it on to snapshots and
+// the relay).
 #include "server/game_rules.h"
-#include "server/relay_log.h"
-#include "server/simulation.h"
 
 namespace server {
 
-std::uint64_t GameWorld::tick() const { return simulation_.rules_tick_; }
-double GameWorld::dt() const { return simulation_.dt_; }
+std::uint64_t GameWorld::tick() const { return host_.rules_tick(); }
+double GameWorld::dt() const { return host_.rules_dt(); }
 
 phys::BodyId GameWorld::create(const phys::BodyDef& def, phys::BodyDefError* error) {
-  const phys::BodyId id = simulation_.world_.add_body(def, error);
-  if (id.is_valid()) simulation_.note_added(id, def);
+  const phys::BodyId id = host_.rules_world().add_body(def, error);
+  if (id.is_valid()) host_.rules_added(id, def);
   return id;
 }
 
 bool GameWorld::destroy(phys::BodyId id) {
-  for (const auto& [client, body] : simulation_.room_.members()) {
+  for (const auto& [client, body] : host_.rules_players()) {
     if (body == id) return false;  // a player's body leaves with its player
   }
-  if (!simulation_.world_.remove_body(id)) return false;
-  simulation_.note_removed(id);
+  if (!host_.rules_world().remove_body(id)) return false;
+  host_.rules_removed(id);
   return true;
 }
 
 bool GameWorld::set_position(phys::BodyId id, phys::Vec2 position) {
-  if (!simulation_.world_.set_position(id, position)) return false;
-  if (simulation_.relay_) simulation_.relay_->set(id, position, std::nullopt, std::nullopt);
+  if (!host_.rules_world().set_position(id, position)) return false;
+  host_.rules_set(id, position, std::nullopt, std::nullopt);
   return true;
 }
 
 bool GameWorld::set_velocity(phys::BodyId id, phys::Vec2 velocity) {
-  if (!simulation_.world_.set_velocity(id, velocity)) return false;
-  if (simulation_.relay_) simulation_.relay_->set(id, std::nullopt, velocity, std::nullopt);
+  if (!host_.rules_world().set_velocity(id, velocity)) return false;
+  host_.rules_set(id, std::nullopt, velocity, std::nullopt);
   return true;
 }
 
 bool GameWorld::set_acceleration(phys::BodyId id, phys::Vec2 acceleration) {
-  if (!simulation_.world_.set_acceleration(id, acceleration)) return false;
-  if (simulation_.relay_) simulation_.relay_->set(id, std::nullopt, std::nullopt, acceleration);
+  if (!host_.rules_world().set_acceleration(id, acceleration)) return false;
+  host_.rules_set(id, std::nullopt, std::nullopt, acceleration);
   return true;
 }
 
 bool GameWorld::apply_impulse(phys::BodyId id, phys::Vec2 impulse) {
-  const std::optional<phys::BodyState> body = simulation_.world_.body(id);
+  const std::optional<phys::BodyState> body = host_.rules_world().body(id);
   if (!body || body->motion != phys::Motion::Dynamic || !(body->mass > 0.0)) return false;
   return set_velocity(
       id, {body->velocity.x + impulse.x / body->mass, body->velocity.y + impulse.y / body->mass});
 }
 
 std::optional<phys::BodyState> GameWorld::body(phys::BodyId id) const {
-  return simulation_.world_.body(id);
+  return host_.rules_world().body(id);
 }
-std::vector<phys::BodyState> GameWorld::bodies() const { return simulation_.world_.bodies(); }
-std::size_t GameWorld::body_count() const { return simulation_.world_.body_count(); }
+std::vector<phys::BodyState> GameWorld::bodies() const { return host_.rules_world().bodies(); }
+std::size_t GameWorld::body_count() const { return host_.rules_world().body_count(); }
 std::optional<phys::BodyId> GameWorld::body_of(ClientId client) const {
-  return simulation_.room_.body_of(client);
+  const auto& players = host_.rules_players();
+  const auto it = players.find(client);
+  if (it == players.end()) return std::nullopt;
+  return it->second;
 }
-const std::map<ClientId, phys::BodyId>& GameWorld::players() const {
-  return simulation_.room_.members();
-}
+const std::map<ClientId, phys::BodyId>& GameWorld::players() const { return host_.rules_players(); }
 const std::vector<phys::ContactEvent>& GameWorld::contact_events() const {
-  return simulation_.world_.contact_events();
+  return host_.rules_world().contact_events();
 }
 const std::vector<phys::SensorEvent>& GameWorld::sensor_events() const {
-  return simulation_.world_.sensor_events();
+  return host_.rules_world().sensor_events();
 }
 const std::vector<phys::CrushEvent>& GameWorld::crush_events() const {
-  return simulation_.world_.crush_events();
+  return host_.rules_world().crush_events();
 }
 std::optional<phys::BodyId> GameWorld::find_body(std::string_view name) const {
-  return simulation_.world_.find_body(name);
+  return host_.rules_world().find_body(name);
 }
-std::uint64_t GameWorld::state_hash() const { return simulation_.world_.state_hash(); }
+std::uint64_t GameWorld::state_hash() const { return host_.rules_world().state_hash(); }
 
 // ---- Queries (physics/query.h), answered by the world as it is ----
 
 std::optional<phys::CastHit> GameWorld::cast_ray(phys::Vec2 origin, phys::Vec2 translation,
                                                  const phys::QueryFilter& filter,
                                                  phys::QueryError* error) const {
-  return simulation_.world_.cast_ray(origin, translation, filter, error);
+  return host_.rules_world().cast_ray(origin, translation, filter, error);
 }
 std::vector<phys::CastHit> GameWorld::cast_ray_all(phys::Vec2 origin, phys::Vec2 translation,
                                                    const phys::QueryFilter& filter,
                                                    phys::QueryError* error) const {
-  return simulation_.world_.cast_ray_all(origin, translation, filter, error);
+  return host_.rules_world().cast_ray_all(origin, translation, filter, error);
 }
 std::vector<phys::BodyId> GameWorld::overlap_box(const phys::Aabb& box,
                                                  const phys::QueryFilter& filter,
                                                  phys::QueryError* error) const {
-  return simulation_.world_.overlap_box(box, filter, error);
+  return host_.rules_world().overlap_box(box, filter, error);
 }
 std::vector<phys::BodyId> GameWorld::overlap_circle(phys::Vec2 center, double radius,
                                                     const phys::QueryFilter& filter,
                                                     phys::QueryError* error) const {
-  return simulation_.world_.overlap_circle(center, radius, filter, error);
+  return host_.rules_world().overlap_circle(center, radius, filter, error);
 }
 std::vector<phys::BodyId> GameWorld::overlap_point(phys::Vec2 point,
                                                    const phys::QueryFilter& filter,
                                                    phys::QueryError* error) const {
-  return simulation_.world_.overlap_point(point, filter, error);
+  return host_.rules_world().overlap_point(point, filter, error);
 }
 std::optional<phys::CastHit> GameWorld::cast_circle(phys::Vec2 center, double radius,
                                                     phys::Vec2 translation,
                                                     const phys::QueryFilter& filter,
                                                     phys::QueryError* error) const {
-  return simulation_.world_.cast_circle(center, radius, translation, filter, error);
+  return host_.rules_world().cast_circle(center, radius, translation, filter, error);
 }
 std::optional<phys::CastHit> GameWorld::cast_box(phys::Vec2 center, phys::Vec2 half_extents,
                                                  phys::Vec2 translation,
                                                  const phys::QueryFilter& filter,
                                                  phys::QueryError* error) const {
-  return simulation_.world_.cast_box(center, half_extents, translation, filter, error);
+  return host_.rules_world().cast_box(center, half_extents, translation, filter, error);
 }
 
 // ---- The game state (phys::GameState in the world) ----
@@ -132,14 +132,14 @@ double GameWorld::get_number(std::string_view name, std::uint64_t index, double 
 }
 bool GameWorld::set_int(std::string_view name, std::int64_t value, std::uint64_t index,
                         phys::GameStateError* error) {
-  return answer(simulation_.world_.game_state().set_int(name, index, value), error);
+  return answer(host_.rules_world().game_state().set_int(name, index, value), error);
 }
 bool GameWorld::set_number(std::string_view name, double value, std::uint64_t index,
                            phys::GameStateError* error) {
-  return answer(simulation_.world_.game_state().set_number(name, index, value), error);
+  return answer(host_.rules_world().game_state().set_number(name, index, value), error);
 }
 bool GameWorld::erase(std::string_view name, std::uint64_t index) {
-  phys::GameState& state = simulation_.world_.game_state();
+  phys::GameState& state = host_.rules_world().game_state();
   const bool had_int = state.erase_int(name, index);
   const bool had_number = state.erase_number(name, index);
   return had_int || had_number;
@@ -147,24 +147,22 @@ bool GameWorld::erase(std::string_view name, std::uint64_t index) {
 bool GameWorld::start_timer(std::string_view name, std::uint64_t after_ticks,
                             std::uint64_t every_ticks, std::uint64_t index,
                             phys::GameStateError* error) {
-  const std::uint64_t now = simulation_.rules_tick_;
+  const std::uint64_t now = host_.rules_tick();
   // A delay that would run past the last tick is refused as a delay of none is.
   const std::uint64_t due = after_ticks > UINT64_MAX - now ? now : now + after_ticks;
-  return answer(simulation_.world_.game_state().start_timer(name, index, now, due, every_ticks),
+  return answer(host_.rules_world().game_state().start_timer(name, index, now, due, every_ticks),
                 error);
 }
 bool GameWorld::cancel_timer(std::string_view name, std::uint64_t index) {
-  return simulation_.world_.game_state().cancel_timer(name, index);
+  return host_.rules_world().game_state().cancel_timer(name, index);
 }
-const phys::GameState& GameWorld::game_state() const { return simulation_.world_.game_state(); }
+const phys::GameState& GameWorld::game_state() const { return host_.rules_world().game_state(); }
 
-const std::vector<ClientGameMessage>& GameWorld::messages() const {
-  return simulation_.delivering_;
-}
+const std::vector<ClientGameMessage>& GameWorld::messages() const { return host_.rules_messages(); }
 
 bool GameWorld::send(ClientId client, std::string payload) {
   if (payload.size() > kMaxOutgoingGameMessageBytes) return false;
-  simulation_.outgoing_.push_back({client, simulation_.rules_tick_, std::move(payload)});
+  host_.rules_send({client, host_.rules_tick(), std::move(payload)});
   return true;
 }
 

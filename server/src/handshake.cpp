@@ -53,6 +53,7 @@ bool is_failed_hello(DropReason reason) {
 
 Handshake::Handshake(const ServerConfig& config)
     : token_(config.token),
+      tickets_(config.ticket_key, config.ticket_room, config.lockstep_players > 0),
       max_clients_(static_cast<std::size_t>(config.max_clients)),
       max_spectators_(static_cast<std::size_t>(config.max_spectators)),
       max_snapshot_window_(config.max_snapshot_window),
@@ -63,7 +64,8 @@ Handshake::Handshake(const ServerConfig& config)
           static_cast<std::size_t>(std::max(0, config.max_players_per_address))) {}
 
 HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wire::Hello& hello,
-                                Simulation& simulation, const std::string& address) {
+                                Simulation& simulation, const std::string& address,
+                                std::uint64_t now) {
   HelloDecision decision;
   if (joined) {
     return refuse(std::move(decision), physics::wire::ERROR_UNEXPECTED_MESSAGE,
@@ -76,7 +78,16 @@ HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wir
                       ", this server speaks version " + std::to_string(wire::kProtocolVersion),
                   DropReason::ProtocolVersion);
   }
-  if (token_ && !same_token(hello.access_token(), *token_)) {
+  if (tickets_.required()) {
+    ticket::Ticket ticket;
+    if (std::string problem =
+            tickets_.check(hello.access_token(), now, simulation.scene().name, ticket);
+        !problem.empty()) {
+      return refuse(std::move(decision), physics::wire::ERROR_BAD_TOKEN, std::move(problem),
+                    DropReason::BadToken);
+    }
+    decision.ticket = std::move(ticket);
+  } else if (token_ && !same_token(hello.access_token(), *token_)) {
     return refuse(std::move(decision), physics::wire::ERROR_BAD_TOKEN,
                   hello.access_token().empty() ? "this server requires an access token"
                                                : "wrong access token",
@@ -93,6 +104,12 @@ HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wir
                   "Hello.want_world, for the world to step them in",
                   DropReason::InvalidView);
   }
+  if (hello.run_rules() && decision.view.encoding != physics::wire::ENCODING_INPUTS) {
+    return refuse(std::move(decision), physics::wire::ERROR_INVALID_VIEW,
+                  "Hello.run_rules runs the rules on the input relay: it needs view.encoding "
+                  "ENCODING_INPUTS and Hello.want_world",
+                  DropReason::InvalidView);
+  }
   if (hello.has_contacts()) {
     ContactFilter contacts;
     if (std::string problem = resolve_contacts(hello.contacts(), hello.spectate(), contacts);
@@ -103,8 +120,14 @@ HelloDecision Handshake::decide(ClientId client, bool joined, const physics::wir
     decision.contacts = std::move(contacts);
   }
   decision.sensor_events = hello.sensor_events();
-  if (hello.spectate()) return decide_spectator(client, std::move(decision));
-  return decide_player(client, hello, simulation, address, std::move(decision));
+  const bool spectator = hello.spectate();
+  decision = spectator ? decide_spectator(client, std::move(decision))
+                       : decide_player(client, hello, simulation, address, std::move(decision));
+  if (decision.outcome != HelloDecision::Outcome::Refused && decision.ticket) {
+    tickets_.admitted(client, *decision.ticket,
+                      spectator ? std::nullopt : std::optional<std::uint32_t>(decision.seat));
+  }
+  return decision;
 }
 
 HelloDecision Handshake::decide_spectator(ClientId client, HelloDecision decision) {
@@ -144,8 +167,17 @@ HelloDecision Handshake::decide_player(ClientId client, const physics::wire::Hel
                     DropReason::AddressFull);
     }
   }
-  const std::optional<std::uint32_t> wanted =
+  std::optional<std::uint32_t> wanted =
       hello.has_seat() ? std::optional<std::uint32_t>(hello.seat()) : std::nullopt;
+  if (decision.ticket) {
+    TicketAdmission::SeatChoice choice = tickets_.choose_seat(*decision.ticket, wanted, seats_);
+    if (!choice.refusal.empty()) {
+      return refuse(std::move(decision), choice.code, std::move(choice.refusal),
+                    choice.code == physics::wire::ERROR_SERVER_FULL ? DropReason::ServerFull
+                                                                    : DropReason::SeatTaken);
+    }
+    wanted = choice.seat;
+  }
   const SeatTable::Claim claim = seats_.claim(client, wanted);
   switch (claim.outcome) {
     case SeatTable::Outcome::Seated:
@@ -229,6 +261,7 @@ void Handshake::forget_address(ClientId client) {
 
 Handshake::Member Handshake::leave(ClientId client) {
   forget_address(client);
+  tickets_.left(client);
   if (spectators_.erase(client) > 0) return Member::Spectator;
   if (lobby_.erase(client) > 0) {
     seats_.release(client);

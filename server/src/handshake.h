@@ -19,6 +19,7 @@
 #include "seats.h"
 #include "server/server.h"
 #include "server/simulation.h"
+#include "ticket_admission.h"
 #include "wire.pb.h"
 #include "wire/view_settings.h"
 
@@ -60,6 +61,8 @@ struct HelloDecision {
   phys::BodyId body = phys::BodyId::invalid();  // Player: its body, in the world now
   std::uint32_t seat = 0;                       // Player, Lobby
   bool lobby_full = false;                      // Lobby: the last seat; open_lobby() next
+  // All but Refused, when tickets are required: the connect ticket it came in with.
+  std::optional<ticket::Ticket> ticket;
 };
 
 // A player welcomed when the lobby opened.
@@ -80,15 +83,18 @@ struct LobbyOpening {
 
 class Handshake {
  public:
-  // Reads token, max_clients, max_spectators, max_snapshot_window and
-  // lockstep_players (N > 0: N seats and a lobby; else max_clients seats).
+  // Reads token, ticket_key, ticket_room, max_clients, max_spectators,
+  // max_snapshot_window and lockstep_players (N > 0: N seats and a lobby; else
+  // max_clients seats).
   explicit Handshake(const ServerConfig& config);
 
   // `joined`: the connection was already welcomed or seated (a second Hello). A
   // player that passes every check is given its seat and its body in `simulation`.
-  // `address`: where it connects from, for max_players_per_address.
+  // `address`: where it connects from, for max_players_per_address. `now`: unix
+  // seconds, read by the network layer, against which a connect ticket expires.
   HelloDecision decide(ClientId client, bool joined, const physics::wire::Hello& hello,
-                       Simulation& simulation, const std::string& address = {});
+                       Simulation& simulation, const std::string& address = {},
+                       std::uint64_t now = 0);
   // Every seat is taken: the lobby's bodies are made in seat order (each at its seat's
   // spawn point when free), so that the world, body ids included, is the same whatever
   // order the players connected in. The lobby is empty and open afterwards.
@@ -116,6 +122,7 @@ class Handshake {
   void forget_address(ClientId client);
 
   std::optional<std::string> token_;
+  TicketAdmission tickets_;
   std::size_t max_clients_;
   std::size_t max_spectators_;
   std::uint32_t max_snapshot_window_;

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <vector>
 
+#include "server/simulation.h"
+
 namespace server {
 
 namespace {
@@ -76,6 +78,31 @@ void RelayLog::game_state(const phys::GameState& state) {
   next_change_slot().set_game_state(bytes.data(), bytes.size());
 }
 
+void RelayLog::joined(std::uint32_t client, phys::BodyId body) {
+  physics::wire::RelayPlayer& player = *open_tick().message.add_joined();
+  player.set_client_id(client);
+  player.set_body_id(body.packed());
+}
+
+void RelayLog::left(std::uint32_t client) { open_tick().message.add_left(client); }
+
+void RelayLog::rules_input(std::uint64_t tick, std::uint32_t client, phys::Vec2 acceleration) {
+  Tick& open = open_tick();
+  open.message.set_tick(tick);
+  physics::wire::RelayRulesInput& input = *open.message.add_rules_inputs();
+  input.set_client_id(client);
+  input.set_ax(acceleration.x);
+  input.set_ay(acceleration.y);
+}
+
+void RelayLog::game_message(std::uint64_t tick, std::uint32_t client, const std::string& payload) {
+  Tick& open = open_tick();
+  open.message.set_tick(tick);
+  physics::wire::RelayGameMessage& message = *open.message.add_messages();
+  message.set_client_id(client);
+  message.set_payload(payload);
+}
+
 void RelayLog::applied(std::uint64_t tick, phys::BodyId body, phys::Vec2 acceleration) {
   Tick& open = open_tick();
   open.message.set_tick(tick);
@@ -101,7 +128,8 @@ bool RelayLog::holds_after(std::uint64_t after_tick) const {
 }
 
 void RelayLog::append(std::uint64_t after_tick, std::uint64_t up_to, std::uint64_t first_change,
-                      std::uint32_t hash_interval, physics::wire::Snapshot& out) const {
+                      std::uint32_t hash_interval, Audience audience,
+                      physics::wire::Snapshot& out) const {
   assert(holds_after(after_tick));
   if (ticks_.empty() || after_tick >= up_to) return;
   const std::uint64_t oldest = ticks_.front().message.tick();
@@ -117,10 +145,29 @@ void RelayLog::append(std::uint64_t after_tick, std::uint64_t up_to, std::uint64
       *copy.add_changes() = t.message.changes(c);
     }
     *copy.mutable_inputs() = t.message.inputs();
-    *copy.mutable_before_step() = t.message.before_step();
-    *copy.mutable_after_step() = t.message.after_step();
+    *copy.mutable_joined() = t.message.joined();
+    *copy.mutable_left() = t.message.left();
+    if (audience == Audience::RulesRunners) {
+      *copy.mutable_rules_inputs() = t.message.rules_inputs();
+      *copy.mutable_messages() = t.message.messages();
+    } else {
+      *copy.mutable_before_step() = t.message.before_step();
+      *copy.mutable_after_step() = t.message.after_step();
+    }
     if (hash_interval > 0 && t.message.tick() % hash_interval == 0) {
       copy.set_state_hash(t.state_hash);
+    }
+  }
+}
+
+void write_players(const Simulation& simulation,
+                   google::protobuf::RepeatedPtrField<physics::wire::RelayPlayer>& out) {
+  for (const auto& [client, body] : simulation.room().members()) {
+    physics::wire::RelayPlayer& player = *out.Add();
+    player.set_client_id(client);
+    player.set_body_id(body.packed());
+    if (const std::optional<phys::Vec2> seen = simulation.last_rules_input(client)) {
+      set_vec2(*player.mutable_rules_input(), *seen);
     }
   }
 }

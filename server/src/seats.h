@@ -28,6 +28,7 @@ class SeatTable {
   bool release(ClientId client);
 
   std::optional<std::uint32_t> seat_of(ClientId client) const;
+  bool is_free(std::uint32_t seat) const { return seat < size_ && by_seat_.count(seat) == 0; }
   std::uint32_t size() const { return size_; }
   std::size_t taken() const { return by_seat_.size(); }
   bool full() const { return by_seat_.size() >= size_; }

@@ -47,6 +47,14 @@ void check_config(const ServerConfig& config) {
     throw std::invalid_argument("steps_per_frame must be in [0, 1000] (0: the scene's)");
   }
   if (config.max_ticks_ahead < 1) throw std::invalid_argument("max_ticks_ahead must be >= 1");
+  if (config.ticket_key && config.token) {
+    throw std::invalid_argument(
+        "a ticket key and an access token: give one (tickets replace the token)");
+  }
+  if (config.ticket_room.size() > ticket::kMaxRoomBytes) {
+    throw std::invalid_argument("ticket_room is at most " + std::to_string(ticket::kMaxRoomBytes) +
+                                " bytes");
+  }
   if (config.lockstep_players < 0 || config.lockstep_players > config.max_clients) {
     throw std::invalid_argument("lockstep_players must be in [0, max_clients]");
   }

@@ -7,6 +7,7 @@
 
 #include "scene/scene.h"
 #include "server/token_source.h"
+#include "ticket/key_file.h"
 
 namespace server {
 
@@ -103,6 +104,16 @@ void add_admission_flags(CLI::App& app, ServerFlags& f) {
                  "--token-file or the PHYSICS_TOKEN environment variable");
   app.add_option("--token-file", f.token_file,
                  "Read the access token from the first line of this file");
+  app.add_option("--ticket-key-file", f.ticket_key_file,
+                 "Admit only clients whose Hello carries a connect ticket sealed with the key "
+                 "in this file (physics-ticket --new-key; docs/SERVER.md, \"Connect tickets\"), "
+                 "one connection per player id; in a lockstep lobby a ticket's seat is held for "
+                 "its player. Replaces the access token: with --token, --token-file or "
+                 "PHYSICS_TOKEN as well, the server refuses to start")
+      ->check(CLI::ExistingFile);
+  app.add_option("--ticket-room", f.config.ticket_room,
+                 "The room a ticket must name, when it names one (at most 64 bytes); "
+                 "default: the scene's name");
   app.add_option("--failed-hellos-before-backoff", f.config.failed_hellos_before_backoff,
                  "After this many failed Hellos in a row from one address (bad token, "
                  "version, frame; no Hello in time), refuse it at accept for a while")
@@ -254,6 +265,22 @@ std::string finish_server_config(ServerFlags& flags) {
   const TokenChoice token_choice = choose_token(token_sources);
   if (!token_choice.error.empty()) return token_choice.error;
   config.token = token_choice.token;
+  if (!flags.ticket_key_file.empty()) {
+    if (config.token) {
+      return "--ticket-key-file replaces the access token: drop --token, --token-file and "
+             "PHYSICS_TOKEN, or the ticket key";
+    }
+    ticket::Key key{};
+    if (std::string error = ticket::read_key_file(flags.ticket_key_file, key); !error.empty()) {
+      return error;
+    }
+    config.ticket_key = key;
+  } else if (!config.ticket_room.empty()) {
+    return "--ticket-room needs --ticket-key-file";
+  }
+  if (config.ticket_room.size() > ticket::kMaxRoomBytes) {
+    return "--ticket-room is at most " + std::to_string(ticket::kMaxRoomBytes) + " bytes";
+  }
   config.hello_backoff = std::chrono::milliseconds(flags.hello_backoff_ms);
   config.hello_backoff_max = std::chrono::milliseconds(flags.hello_backoff_max_ms);
   config.seat_backoff = std::chrono::milliseconds(flags.seat_backoff_ms);

@@ -18,6 +18,7 @@ struct ServerFlags {
   long handshake_timeout_ms = 2000;
   std::string token;
   std::string token_file;
+  std::string ticket_key_file;
   long hello_backoff_ms = 1000;
   long hello_backoff_max_ms = 60000;
   long seat_backoff_ms = 2000;
@@ -33,8 +34,9 @@ struct ServerFlags {
 // Declares every flag on `app`; --rules too when `offer_rules`.
 void add_server_flags(CLI::App& app, ServerFlags& flags, bool offer_rules);
 
-// Completes flags.config from the parsed flags and the environment (PHYSICS_TOKEN,
-// AGONES_SDK_HTTP_PORT). Empty, or what was wrong.
+// Completes flags.config from the parsed flags, the files they name (token, ticket
+// key) and the environment (PHYSICS_TOKEN, AGONES_SDK_HTTP_PORT). Empty, or what was
+// wrong.
 std::string finish_server_config(ServerFlags& flags);
 
 }  // namespace server

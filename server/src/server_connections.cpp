@@ -67,17 +67,20 @@ void Server::Impl::admit(asio::ip::tcp::socket socket, Transport transport) {
 }
 
 // Connections that have not joined have caps of their own, in all and per address,
-// so that a stranger's silent sockets never take a player's seat (and each is closed
-// at the handshake deadline anyway). Over a cap, the oldest pending connection that
-// has sent nothing yet (of the same address, for the address's cap) makes room for
-// the newcomer: a would-be player sends its Hello at once, so an idle socket is the
-// first to go, and a real player from a new address always gets in. Only when every
-// pending one has sent bytes is the newcomer refused.
+// so that a stranger's sockets never take a player's seat (and each is closed at the
+// handshake deadline anyway). Over a cap, the oldest pending connection (of the same
+// address, for the address's cap) makes room for the newcomer, one that has sent
+// nothing first: a would-be player sends its Hello at once and is through in a round
+// trip, so the oldest is the one holding its place longest without a Hello, whether
+// silent or dribbling bytes, and a real player always gets in.
 void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
   std::size_t pending = 0;
   std::size_t from_address = 0;
+  // The oldest of the others: silent, and any, in all and from the newcomer's address.
   Session* oldest_silent = nullptr;
   Session* oldest_silent_here = nullptr;
+  Session* oldest = nullptr;
+  Session* oldest_here = nullptr;
   const auto older = [](Session* than, Session& session) {
     return than == nullptr || session.accepted_at() < than->accepted_at();
   };
@@ -86,7 +89,10 @@ void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
     ++pending;
     const bool here = session->address() == fresh.address();
     if (here) ++from_address;
-    if (session.get() == &fresh || session->has_sent_bytes()) continue;
+    if (session.get() == &fresh) continue;
+    if (older(oldest, *session)) oldest = session.get();
+    if (here && older(oldest_here, *session)) oldest_here = session.get();
+    if (session->has_sent_bytes()) continue;
     if (older(oldest_silent, *session)) oldest_silent = session.get();
     if (here && older(oldest_silent_here, *session)) oldest_silent_here = session.get();
   }
@@ -94,25 +100,16 @@ void Server::Impl::refuse_if_too_many_pending(Session& fresh) {
       from_address > static_cast<std::size_t>(config_.max_pending_per_address);
   const bool all_over = pending > static_cast<std::size_t>(config_.max_pending);
   if (!address_over && !all_over) return;
-  if (Session* victim = address_over ? oldest_silent_here : oldest_silent; victim != nullptr) {
-    update_stats([](ServerStats& s) { ++s.evicted_pending; });
-    victim->close_with_error(physics::wire::ERROR_SERVER_FULL,
-                             "silent too long while others wait to join: make room for a newer "
-                             "connection",
-                             DropReason::TooManyPending);
-    return;
-  }
-  if (all_over) {
-    fresh.close_with_error(
-        physics::wire::ERROR_SERVER_FULL,
-        "too many connections still handshaking (" + std::to_string(config_.max_pending) + ")",
-        DropReason::TooManyPending);
-  } else {
-    fresh.close_with_error(physics::wire::ERROR_SERVER_FULL,
-                           "too many connections still handshaking from " + fresh.address() + " (" +
-                               std::to_string(config_.max_pending_per_address) + ")",
+  Session* victim = address_over ? (oldest_silent_here ? oldest_silent_here : oldest_here)
+                                 : (oldest_silent ? oldest_silent : oldest);
+  if (victim == nullptr) victim = &fresh;  // a cap of 0: nobody may wait
+  update_stats([](ServerStats& s) { ++s.evicted_pending; });
+  victim->close_with_error(physics::wire::ERROR_SERVER_FULL,
+                           victim == &fresh
+                               ? "no connection may wait to join here"
+                               : "no Hello for too long while others wait to join: make room for a "
+                                 "newer connection",
                            DropReason::TooManyPending);
-  }
 }
 
 void Server::Impl::refuse_at_accept(asio::ip::tcp::socket& socket, const std::string& text,

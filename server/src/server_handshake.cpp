@@ -3,6 +3,7 @@
 // lobby's Welcomes once every seat is taken.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <utility>
@@ -18,6 +19,7 @@ namespace server {
 
 void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello) {
   session.set_wants_world(hello.want_world());
+  session.set_runs_rules(hello.run_rules());
   // An address whose players were dropped for straggling or not reading waits
   // before it takes a seat again (address_limits.h).
   if (!session.joined() && !hello.spectate()) {
@@ -33,8 +35,12 @@ void Server::Impl::on_hello(Session& session, const physics::wire::Hello& hello)
       return;
     }
   }
+  // The wall clock, which connect tickets expire by, is read here, never in the tick.
+  const auto now = std::chrono::duration_cast<std::chrono::seconds>(
+      std::chrono::system_clock::now().time_since_epoch());
   HelloDecision decision =
-      handshake_.decide(session.id(), session.joined(), hello, simulation_, session.address());
+      handshake_.decide(session.id(), session.joined(), hello, simulation_, session.address(),
+                        static_cast<std::uint64_t>(std::max<std::int64_t>(0, now.count())));
   // Held from its check on, whatever follows; on_closed forgets it.
   if (decision.contacts) feeds_.subscribe_contacts(session.id(), std::move(*decision.contacts));
   if (decision.sensor_events) feeds_.subscribe_sensor_events(session.id());
@@ -95,11 +101,17 @@ void Server::Impl::give_world(Session& session, const wire::ViewSettings& view,
   if (!session.wants_world()) return;
   const std::vector<std::uint8_t> bytes = simulation_.world().to_bytes();
   welcome.mutable_welcome()->set_world_state(bytes.data(), bytes.size());
+  write_players(simulation_, *welcome.mutable_welcome()->mutable_players());
   if (view.encoding == physics::wire::ENCODING_INPUTS) {
     // The relay is attached only while a welcomed client follows it: the Simulation
     // pays a state hash per tick for it, and the log only holds what such clients need.
     if (relay_cursors_.empty()) simulation_.relay_to(&relay_log_);
-    relay_cursors_[session.id()] = {simulation_.current_tick(), relay_log_.next_change(), false};
+    // A client that runs the rules is sent their inputs and messages, not their changes.
+    const bool runs_rules = session.runs_rules() && simulation_.has_rules();
+    welcome.mutable_welcome()->set_rules_run_here(runs_rules);
+    relay_cursors_[session.id()] = {
+        simulation_.current_tick(), relay_log_.next_change(), false,
+        runs_rules ? RelayLog::Audience::RulesRunners : RelayLog::Audience::Followers};
     update_stats([&](ServerStats& s) { s.relay_clients = relay_cursors_.size(); });
   }
 }

@@ -104,6 +104,7 @@ class Server::Impl final : public SessionHost {
     std::uint64_t after_tick = 0;
     std::uint64_t first_change = 0;
     bool resync = false;  // a FullStateRequest: the world's state goes next
+    RelayLog::Audience audience = RelayLog::Audience::Followers;  // Hello.run_rules
   };
   // With Hello.want_world: the world's state in the Welcome, and the client's place
   // in the relay when its view is ENCODING_INPUTS.

@@ -8,6 +8,7 @@
 
 #include "log_fields.h"
 #include "server_impl.h"
+#include "wire/relay_ticks.h"
 
 namespace server {
 
@@ -266,10 +267,14 @@ std::string Server::Impl::relay_bytes(RelayCursor& cursor, std::uint64_t tick,
     // The world after `tick` replaces every tick the client has not been sent.
     const std::vector<std::uint8_t> bytes = simulation_.world().to_bytes();
     relay.set_world_state(bytes.data(), bytes.size());
-    cursor = {tick, relay_log_.next_change(), false};
+    write_players(simulation_, *relay.mutable_players());
+    cursor = {tick, relay_log_.next_change(), false, cursor.audience};
     update_stats([](ServerStats& s) { ++s.relay_resyncs; });
   } else {
-    relay_log_.append(cursor.after_tick, tick, cursor.first_change, hash_interval, relay);
+    relay_log_.append(cursor.after_tick, tick, cursor.first_change, hash_interval, cursor.audience,
+                      relay);
+    // Their numbers are implied: consecutive, the last the snapshot's tick.
+    wire::omit_relay_tick_numbers(relay);
     cursor.after_tick = tick;
   }
   return relay.SerializeAsString();

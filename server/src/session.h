@@ -107,6 +107,9 @@ class Session : public std::enable_shared_from_this<Session> {
   // Hello.want_world: its Welcome carries the world's state.
   bool wants_world() const { return wants_world_; }
   void set_wants_world(bool wants) { wants_world_ = wants; }
+  // Hello.run_rules: it runs the game's rules itself (its relay carries messages).
+  bool runs_rules() const { return runs_rules_; }
+  void set_runs_rules(bool runs) { runs_rules_ = runs; }
   void set_joined(std::string name) {
     joined_ = true;
     name_ = std::move(name);
@@ -194,8 +197,9 @@ class Session : public std::enable_shared_from_this<Session> {
   bool joined_ = false;
   bool closing_ = false;
   bool closed_ = false;
-  bool announced_closing_ = false;
-  bool wants_world_ = false;  // host_.on_closing has been called
+  bool announced_closing_ = false;  // host_.on_closing has been called
+  bool wants_world_ = false;
+  bool runs_rules_ = false;
   DropReason close_reason_ = DropReason::Disconnected;
   clock::time_point accepted_;
   clock::time_point last_received_;

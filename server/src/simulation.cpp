@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "server/relay_log.h"
+#include "server/rules_tick.h"
 
 namespace server {
 namespace {
@@ -87,6 +88,7 @@ Admission Simulation::admit(ClientId client, std::optional<std::uint32_t> seat) 
   if (!body) return admission;
   inputs_.emplace(client, ClientInputs{});
   note_added(*body, made);
+  if (relay_) relay_->joined(client, *body);
   if (recorder_) recorder_->joined(current_tick_, client, *body, seat);
   admission.body = body;
   if (rules_) {
@@ -105,6 +107,7 @@ bool Simulation::leave(ClientId client) {
   inputs_.erase(client);
   last_applied_.erase(client);
   note_removed(*body);
+  if (relay_) relay_->left(client);
   if (rules_) {
     rules_tick_ = current_tick_;
     GameWorld handle(*this);
@@ -179,6 +182,7 @@ TickResult Simulation::step_tick() {
       if (first || !(last->second == taken.acceleration)) {
         last->second = taken.acceleration;
         applied.push_back({client, *body, taken.acceleration});
+        if (relay_) relay_->rules_input(result.tick, client, taken.acceleration);
       }
     }
     if (recorder_ && body) recorder_->applied(result.tick, client, taken.acceleration);
@@ -189,6 +193,7 @@ TickResult Simulation::step_tick() {
       if (!room_.contains(client)) continue;  // left after sending it
       for (std::string& payload : payloads) {
         if (recorder_) recorder_->game_message(result.tick, client, payload);
+        if (relay_) relay_->game_message(result.tick, client, payload);
         delivering_.push_back({client, std::move(payload)});
       }
     }
@@ -198,9 +203,7 @@ TickResult Simulation::step_tick() {
     // The rules' changes before the step: after the inputs, in the relay too.
     rules_tick_ = result.tick;
     if (relay_) relay_->begin_rules(RelayLog::RulesPhase::BeforeStep);
-    GameWorld handle(*this);
-    fire_timers(handle, result.tick);
-    rules_->before_step(handle, applied);
+    run_rules_before_step(*rules_, *this, result.tick, applied);
     if (relay_) relay_->end_rules();
     delivering_.clear();
   }
@@ -208,8 +211,7 @@ TickResult Simulation::step_tick() {
   current_tick_ = result.tick;
   if (rules_) {
     if (relay_) relay_->begin_rules(RelayLog::RulesPhase::AfterStep);
-    GameWorld handle(*this);
-    rules_->after_step(handle);
+    run_rules_after_step(*rules_, *this);
     relay_game_state();
     if (relay_) relay_->end_rules();
   }
@@ -244,17 +246,6 @@ const ClientInputs* Simulation::inputs_of(ClientId client) const {
   return it == inputs_.end() ? nullptr : &it->second;
 }
 
-void Simulation::fire_timers(GameWorld& handle, std::uint64_t tick) {
-  phys::GameState& state = world_.game_state();
-  for (const phys::GameKey& key : state.timers_due(tick)) {
-    // An earlier timer's rule may have cancelled this one, or started it again later.
-    const std::optional<phys::GameTimer> timer = state.timer(key.name, key.index);
-    if (!timer || timer->due > tick) continue;
-    state.fired(key, tick);
-    rules_->on_timer(handle, key.name, key.index);
-  }
-}
-
 void Simulation::relay_game_state() {
   if (!relay_ || world_.game_state() == relayed_game_state_) return;
   relay_->game_state(world_.game_state());
@@ -264,6 +255,12 @@ void Simulation::relay_game_state() {
 void Simulation::replace_rules(std::shared_ptr<GameRules> rules) {
   rules_ = std::move(rules);
   set_contact_events(world_.contact_events_on());
+}
+
+void Simulation::rules_set(phys::BodyId id, std::optional<phys::Vec2> position,
+                           std::optional<phys::Vec2> velocity,
+                           std::optional<phys::Vec2> acceleration) {
+  if (relay_) relay_->set(id, position, velocity, acceleration);
 }
 
 GameWorld Simulation::world_handle() {

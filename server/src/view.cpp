@@ -1,3 +1,7 @@
+// A view's policy: which bodies go to its clients this tick, and how each goes
+// (the predictor that carries it, quantized, velocity only or exact), under its
+// tolerances, its area of interest and its byte budget. The records themselves are
+// written by wire::SnapshotRecordWriter, next to the reader the clients run.
 #include "view.h"
 
 #include <algorithm>
@@ -5,15 +9,31 @@
 #include <cmath>
 #include <vector>
 
+#include "wire/snapshot_records.h"
+
 namespace server {
-namespace {
 
 using wire::PredictedBody;
 using wire::PredictorMode;
 
-// A quantized delta must stay an exact integer in a double on both ends; beyond
-// this the body goes as an exact record instead.
-constexpr double kMaxQuantizedDelta = 4503599627370496.0;  // 2^52
+// A body out of its prediction (or not held), to be sent unless the budget holds it.
+struct View::Candidate {
+  const TruthBody* truth = nullptr;
+  const PredictedBody* held = nullptr;  // null: the client holds no state for it
+  double priority = 0.0;
+  std::size_t bytes = 0;  // an estimate of its record's size
+  bool own = false;
+
+  // Under a byte budget: the own body first, then the bodies the client does not hold
+  // (so that a full state completes in a bounded number of snapshots), then by
+  // priority.
+  int budget_tier() const {
+    if (own) return 0;
+    return held == nullptr ? 1 : 2;
+  }
+};
+
+namespace {
 
 // A record carries the velocity alone when the position is within this share of the
 // tolerance: the position then keeps room to drift before it must be sent.
@@ -22,21 +42,6 @@ constexpr double kVelocityOnlyShare = 0.5;
 // Under a byte budget, bodies are ranked by how far they are out of tolerance and
 // how near the client's own body they are: at this distance the weight halves.
 constexpr double kPriorityHalfDistance = 10.0;
-
-struct Candidate {
-  const TruthBody* truth = nullptr;
-  const PredictedBody* held = nullptr;  // null: the client holds no state for it
-  double priority = 0.0;
-  std::size_t bytes = 0;  // an estimate of its record's size
-  bool own = false;
-};
-
-// Under a byte budget: the own body first, then the bodies the client does not hold
-// (so that a full state completes in a bounded number of snapshots), then by priority.
-int budget_tier(const Candidate& c) {
-  if (c.own) return 0;
-  return c.held == nullptr ? 1 : 2;
-}
 
 double largest_error(const TruthBody& t, const PredictedBody& m, double position_scale,
                      double velocity_scale) {
@@ -95,54 +100,6 @@ PredictorMode choose_mode(const wire::Predictor& predictor, const TruthBody& t,
     }
   }
   return best_miss < 0.5 * kept ? best : current;
-}
-
-// Starts the records of one list: ids as gaps from the one before, and a mode entry
-// ((index gap << 2) | mode) for each record whose mode changes. The caller adds the
-// record's values to the list it returns.
-template <class List>
-class RecordStarts {
- public:
-  explicit RecordStarts(List& list) : list_(list) {}
-  List& start(std::uint64_t id, bool mode_changes, PredictorMode mode) {
-    const auto index = static_cast<std::uint32_t>(list_.id_gaps_size());
-    list_.add_id_gaps(id - last_id_);
-    last_id_ = id;
-    if (mode_changes) {
-      list_.add_modes(((index - last_mode_) << 2) | static_cast<std::uint32_t>(mode));
-      last_mode_ = index;
-    }
-    return list_;
-  }
-
- private:
-  List& list_;
-  std::uint64_t last_id_ = 0;
-  std::uint32_t last_mode_ = 0;  // record index of the last mode entry
-};
-
-void add_exact(RecordStarts<physics::wire::ExactBodies>& exact, std::uint64_t id, double x,
-               double y, double vx, double vy, bool mode_changes, PredictorMode mode) {
-  physics::wire::ExactBodies& list = exact.start(id, mode_changes, mode);
-  list.add_x(x);
-  list.add_y(y);
-  list.add_vx(vx);
-  list.add_vy(vy);
-}
-
-std::size_t varint_bytes(std::uint64_t v) {
-  std::size_t n = 1;
-  for (; v >= 0x80; v >>= 7) ++n;
-  return n;
-}
-
-std::uint64_t zigzag(std::int64_t v) {
-  return (static_cast<std::uint64_t>(v) << 1) ^ static_cast<std::uint64_t>(v >> 63);
-}
-
-std::size_t quantized_bytes(double d) {
-  if (!(std::fabs(d) < kMaxQuantizedDelta)) return 9;
-  return varint_bytes(zigzag(static_cast<std::int64_t>(std::nearbyint(d))));
 }
 
 }  // namespace
@@ -214,11 +171,36 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
   if (reset) mirror_.clear();
   if (mirror_.started()) mirror_.advance_to(frame.tick, predictor_);
 
-  // One walk over the world and the mirror, both in ascending id.
+  std::vector<std::uint64_t> left;
+  std::vector<Candidate> candidates = out_of_prediction(frame, own, exact, left);
+  bodies_missing_ = 0;
+  if (settings_.byte_budget > 0) keep_within_budget(candidates, exact);
+  write_records(candidates, exact);
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    message_.add_left_gaps(i == 0 ? left[i] : left[i] - left[i - 1]);
+  }
+  if (reset) message_.set_full(true);
+  if (bodies_missing_ > 0) message_.set_bodies_missing(bodies_missing_);
+  stats_.records = candidates.size();
+  stats_.left = left.size();
+
+  // The mirror takes the records exactly as the client will.
+  const std::string error = mirror_.apply(message_, predictor_, settings_.quantum);
+  (void)error;  // our own records are well formed; the tests check apply() on bad ones
+  delta_has_news_ = !candidates.empty() || !left.empty() || reset;
+  if (hash_due(reset)) message_.set_view_hash(mirror_.hash());
+  delta_ = std::make_shared<const std::string>(message_.SerializeAsString());
+}
+
+// One walk over the world and the mirror, both in ascending id: the bodies in the
+// view that left their prediction (or that the client does not hold), and in `left`
+// the bodies the client holds that are gone or out of the view.
+std::vector<View::Candidate> View::out_of_prediction(const TruthFrame& frame,
+                                                     std::optional<std::uint64_t> own, bool exact,
+                                                     std::vector<std::uint64_t>& left) {
   const TruthBody* own_truth = own ? frame.find(*own) : nullptr;
   const auto& held = mirror_.bodies();
   std::vector<Candidate> candidates;
-  std::vector<std::uint64_t> left;
   std::size_t m = 0;
   const double pos_tol = settings_.position_tolerance;
   const double vel_tol = settings_.velocity_tolerance;
@@ -255,64 +237,66 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
     candidates.push_back(c);
   }
   while (m < held.size()) left.push_back(held[m++].id);
+  return candidates;
+}
 
-  // The byte budget: the highest priorities first, each with what it waited.
-  bodies_missing_ = 0;
-  if (settings_.byte_budget > 0) {
-    const PredictedBody zero{};
-    for (Candidate& c : candidates) {
-      const auto waited = waiting_priority_.find(c.truth->id);
-      if (waited != waiting_priority_.end()) c.priority += waited->second;
-      const PredictedBody& base = c.held != nullptr ? *c.held : zero;
-      c.bytes = exact ? 34
-                      : 3 + quantized_bytes((c.truth->x - base.x) / settings_.quantum.position) +
-                            quantized_bytes((c.truth->y - base.y) / settings_.quantum.position) +
-                            quantized_bytes((c.truth->vx - base.vx) / settings_.quantum.velocity) +
-                            quantized_bytes((c.truth->vy - base.vy) / settings_.quantum.velocity);
-    }
-    std::vector<Candidate> ranked = candidates;
-    std::stable_sort(ranked.begin(), ranked.end(), [](const Candidate& a, const Candidate& b) {
-      const int ta = budget_tier(a);
-      const int tb = budget_tier(b);
-      return ta != tb ? ta < tb : a.priority > b.priority;
-    });
-    std::map<std::uint64_t, double> still_waiting;
-    std::vector<std::uint64_t> chosen;
-    std::size_t used = 0;
-    bool missing_sent = false;
-    for (const Candidate& c : ranked) {
-      // One body not held goes in every snapshot, whatever its size: the bound on
-      // completing a full state (docs/PROTOCOL.md, section 5.9) rests on it.
-      const bool first_missing = c.held == nullptr && !c.own && !missing_sent;
-      if (used + c.bytes <= settings_.byte_budget || chosen.empty() || first_missing) {
-        used += c.bytes;
-        chosen.push_back(c.truth->id);
-        if (c.held == nullptr && !c.own) missing_sent = true;
-      } else {
-        still_waiting.emplace(c.truth->id, c.priority);
-        ++stats_.deferred;
-        if (c.held == nullptr) ++bodies_missing_;
-        if (c.held != nullptr) {
-          stats_.max_position_error =
-              std::max(stats_.max_position_error, position_error(*c.truth, *c.held));
-        }
+// The byte budget: the highest priorities first, each with what it waited; the rest
+// wait, their priorities kept for the next update.
+void View::keep_within_budget(std::vector<Candidate>& candidates, bool exact) {
+  const PredictedBody zero{};
+  for (Candidate& c : candidates) {
+    const auto waited = waiting_priority_.find(c.truth->id);
+    if (waited != waiting_priority_.end()) c.priority += waited->second;
+    const PredictedBody& base = c.held != nullptr ? *c.held : zero;
+    c.bytes =
+        exact ? wire::kExactRecordBytes
+              : wire::quantized_record_bytes((c.truth->x - base.x) / settings_.quantum.position,
+                                             (c.truth->y - base.y) / settings_.quantum.position,
+                                             (c.truth->vx - base.vx) / settings_.quantum.velocity,
+                                             (c.truth->vy - base.vy) / settings_.quantum.velocity);
+  }
+  std::vector<Candidate> ranked = candidates;
+  std::stable_sort(ranked.begin(), ranked.end(), [](const Candidate& a, const Candidate& b) {
+    const int ta = a.budget_tier();
+    const int tb = b.budget_tier();
+    return ta != tb ? ta < tb : a.priority > b.priority;
+  });
+  std::map<std::uint64_t, double> still_waiting;
+  std::vector<std::uint64_t> chosen;
+  std::size_t used = 0;
+  bool missing_sent = false;
+  for (const Candidate& c : ranked) {
+    // One body not held goes in every snapshot, whatever its size: the bound on
+    // completing a full state (docs/PROTOCOL.md, section 5.9) rests on it.
+    const bool first_missing = c.held == nullptr && !c.own && !missing_sent;
+    if (used + c.bytes <= settings_.byte_budget || chosen.empty() || first_missing) {
+      used += c.bytes;
+      chosen.push_back(c.truth->id);
+      if (c.held == nullptr && !c.own) missing_sent = true;
+    } else {
+      still_waiting.emplace(c.truth->id, c.priority);
+      ++stats_.deferred;
+      if (c.held == nullptr) ++bodies_missing_;
+      if (c.held != nullptr) {
+        stats_.max_position_error =
+            std::max(stats_.max_position_error, position_error(*c.truth, *c.held));
       }
     }
-    std::sort(chosen.begin(), chosen.end());
-    std::erase_if(candidates, [&](const Candidate& c) {
-      return !std::binary_search(chosen.begin(), chosen.end(), c.truth->id);
-    });
-    waiting_priority_ = std::move(still_waiting);
   }
+  std::sort(chosen.begin(), chosen.end());
+  std::erase_if(candidates, [&](const Candidate& c) {
+    return !std::binary_search(chosen.begin(), chosen.end(), c.truth->id);
+  });
+  waiting_priority_ = std::move(still_waiting);
+}
 
-  // The records, ascending id; ids as gaps from the one before.
-  physics::wire::QuantizedBodies& quantized = *message_.mutable_quantized();
-  physics::wire::ExactBodies& exact_list = *message_.mutable_exact();
-  physics::wire::VelocityBodies& velocities = *message_.mutable_velocities();
-  RecordStarts<physics::wire::ExactBodies> exact_records(exact_list);
-  RecordStarts<physics::wire::QuantizedBodies> quantized_records(quantized);
-  RecordStarts<physics::wire::VelocityBodies> velocity_records(velocities);
+// The records, ascending id: each body with the predictor that carries it from here,
+// as exact values, quantized deltas, or its velocity alone.
+void View::write_records(const std::vector<Candidate>& candidates, bool exact) {
+  wire::SnapshotRecordWriter records(message_);
   const PredictedBody zero{};
+  const double pos_tol = settings_.position_tolerance;
+  const double vel_tol = settings_.velocity_tolerance;
   for (const Candidate& c : candidates) {
     const TruthBody& t = *c.truth;
     const PredictedBody& base = c.held != nullptr ? *c.held : zero;
@@ -324,49 +308,30 @@ void View::update(const TruthFrame& frame, std::optional<std::uint64_t> own, boo
     const double d[4] = {(t.x - base.x) / q, (t.y - base.y) / q, (t.vx - base.vx) / qv,
                          (t.vy - base.vy) / qv};
     const bool fits = std::all_of(std::begin(d), std::end(d),
-                                  [](double v) { return std::fabs(v) < kMaxQuantizedDelta; });
+                                  [](double v) { return std::fabs(v) < wire::kMaxQuantizedDelta; });
     // A body still well inside its position tolerance needs only its velocity
     // corrected: most records of a flowing pile are of that kind.
     const bool position_holds = c.held != nullptr &&
                                 std::fabs(t.x - base.x) <= kVelocityOnlyShare * pos_tol &&
                                 std::fabs(t.y - base.y) <= kVelocityOnlyShare * pos_tol;
     if (exact || !fits) {
-      add_exact(exact_records, t.id, t.x, t.y, t.vx, t.vy, mode_changes, mode);
+      records.add_exact(t.id, t.x, t.y, t.vx, t.vy, mode_changes, mode);
     } else if (position_holds) {
-      physics::wire::VelocityBodies& list = velocity_records.start(t.id, mode_changes, mode);
-      list.add_dvx(static_cast<std::int64_t>(std::nearbyint(d[2])));
-      list.add_dvy(static_cast<std::int64_t>(std::nearbyint(d[3])));
+      records.add_velocity(t.id, static_cast<std::int64_t>(std::nearbyint(d[2])),
+                           static_cast<std::int64_t>(std::nearbyint(d[3])), mode_changes, mode);
       stats_.max_position_error = std::max(stats_.max_position_error, position_error(t, base));
     } else {
-      physics::wire::QuantizedBodies& list = quantized_records.start(t.id, mode_changes, mode);
       const double n[4] = {std::nearbyint(d[0]), std::nearbyint(d[1]), std::nearbyint(d[2]),
                            std::nearbyint(d[3])};
-      list.add_dx(static_cast<std::int64_t>(n[0]));
-      list.add_dy(static_cast<std::int64_t>(n[1]));
-      list.add_dvx(static_cast<std::int64_t>(n[2]));
-      list.add_dvy(static_cast<std::int64_t>(n[3]));
+      records.add_quantized(t.id, static_cast<std::int64_t>(n[0]), static_cast<std::int64_t>(n[1]),
+                            static_cast<std::int64_t>(n[2]), static_cast<std::int64_t>(n[3]),
+                            mode_changes, mode);
       stats_.max_position_error =
           std::max({stats_.max_position_error, std::fabs(t.x - (base.x + n[0] * q)),
                     std::fabs(t.y - (base.y + n[1] * q))});
     }
   }
-  if (quantized.id_gaps_size() == 0) message_.clear_quantized();
-  if (exact_list.id_gaps_size() == 0) message_.clear_exact();
-  if (velocities.id_gaps_size() == 0) message_.clear_velocities();
-  for (std::size_t i = 0; i < left.size(); ++i) {
-    message_.add_left_gaps(i == 0 ? left[i] : left[i] - left[i - 1]);
-  }
-  if (reset) message_.set_full(true);
-  if (bodies_missing_ > 0) message_.set_bodies_missing(bodies_missing_);
-  stats_.records = candidates.size();
-  stats_.left = left.size();
-
-  // The mirror takes the records exactly as the client will.
-  const std::string error = mirror_.apply(message_, predictor_, settings_.quantum);
-  (void)error;  // our own records are well formed; the tests check apply() on bad ones
-  delta_has_news_ = !candidates.empty() || !left.empty() || reset;
-  if (hash_due(reset)) message_.set_view_hash(mirror_.hash());
-  delta_ = std::make_shared<const std::string>(message_.SerializeAsString());
+  records.finish();
 }
 
 // Every member of the view is sent every update with news (a member that cannot be
@@ -391,12 +356,11 @@ const std::shared_ptr<const std::string>& View::full_state() {
   full.set_tick(last_tick_);
   if (settings_.state_hash) full.set_state_hash(state_hash_);
   full.set_full(true);
-  physics::wire::ExactBodies& list = *full.mutable_exact();
-  RecordStarts<physics::wire::ExactBodies> records(list);
+  wire::SnapshotRecordWriter records(full);
   for (const PredictedBody& b : mirror_.bodies()) {
-    add_exact(records, b.id, b.x, b.y, b.vx, b.vy, b.mode != PredictorMode::Ballistic, b.mode);
+    records.add_exact(b.id, b.x, b.y, b.vx, b.vy, b.mode != PredictorMode::Ballistic, b.mode);
   }
-  if (list.id_gaps_size() == 0) full.clear_exact();
+  records.finish();
   if (bodies_missing_ > 0) full.set_bodies_missing(bodies_missing_);
   full.set_view_hash(mirror_.hash());
   full_state_ = std::make_shared<const std::string>(full.SerializeAsString());

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "truth_frame.h"
 #include "wire.pb.h"
@@ -51,7 +52,14 @@ class View {
   const wire::Reconstruction& mirror() const { return mirror_; }
 
  private:
+  struct Candidate;  // a body out of its prediction, to be sent (view.cpp)
+
   void update_full_encoding(const TruthFrame& frame, std::optional<std::uint64_t> own);
+  std::vector<Candidate> out_of_prediction(const TruthFrame& frame,
+                                           std::optional<std::uint64_t> own, bool exact,
+                                           std::vector<std::uint64_t>& left);
+  void keep_within_budget(std::vector<Candidate>& candidates, bool exact);
+  void write_records(const std::vector<Candidate>& candidates, bool exact);
   bool in_interest(const TruthBody& body, const TruthBody* own) const;
   // Whether this update's delta carries the view hash (ViewSettings::view_hash_interval).
   bool hash_due(bool full);

@@ -71,6 +71,8 @@ std::optional<Endpoint> parse_listening_line(std::string_view line) {
   return endpoint;
 }
 
+// Long on purpose: spawning and reading the listening line share the descriptors and
+// the cleanup each failure on the way needs, written once in the order they are made.
 ServerProcess::ServerProcess(ProcessOptions options) : options_(std::move(options)) {
   std::vector<std::string> args = {options_.executable.string(), "--bind", options_.bind, "--port",
                                    "0"};

@@ -11,6 +11,7 @@
 #include "harness.h"
 #include "physics_testing/link_conditioner.h"
 #include "relay/follow_relay.h"
+#include "wire/relay_ticks.h"
 
 namespace itest {
 namespace {
@@ -43,6 +44,7 @@ struct Follower {
   std::uint64_t compared = 0;
   std::uint64_t body_records = 0;
   std::uint64_t world_states = 0;
+  std::uint64_t numbered_on_the_wire = 0;  // relayed ticks that carried their number
   std::string problem;
 
   bool welcome(const physics::wire::Welcome& w) {
@@ -62,7 +64,11 @@ struct Follower {
       if (!world) return false;
       tick = s.tick();
     }
-    for (const physics::wire::RelayTick& t : s.relay()) {
+    // The server leaves the relayed ticks' numbers implied (PROTOCOL.md 5.12).
+    for (const physics::wire::RelayTick& t : s.relay()) numbered_on_the_wire += t.tick() != 0;
+    physics::wire::Snapshot numbered = s;
+    wire::number_relay_ticks(numbered);
+    for (const physics::wire::RelayTick& t : numbered.relay()) {
       if (t.tick() != tick + 1) {
         problem = "relay tick " + std::to_string(t.tick()) + " after " + std::to_string(tick);
         return false;
@@ -121,6 +127,7 @@ TEST(RelayView, AFollowerHoldsTheServersWorldThroughAPath) {
   EXPECT_GE(follower.followed, 240u);
   EXPECT_GE(follower.compared, 200u);
   EXPECT_EQ(follower.body_records, 0u) << "the relay sends no body records";
+  EXPECT_EQ(follower.numbered_on_the_wire, 0u) << "the relayed ticks' numbers are implied";
 }
 
 TEST(RelayView, AFullStateRequestIsAnsweredWithTheWorld) {

@@ -180,6 +180,31 @@ TEST(StrangerAttack, IdleSocketsFromEightAddressesNeverKeepAPlayerOut) {
   EXPECT_GT(stats.evicted_pending, 0u);
 }
 
+// 8 addresses hold 8 sockets each (the pending pool's 64), each of which has sent one
+// byte of a length prefix and says no more, as a stranger that keeps its place by
+// dribbling: a real player from a ninth address joins every time, in the place of the
+// oldest of them. Without the eviction of sockets that have sent bytes, it is refused.
+TEST(StrangerAttack, DribblingSocketsFromEightAddressesNeverKeepAPlayerOut) {
+  server::ServerConfig config = stranger_config();
+  config.handshake_timeout = 30s;  // the strangers' sockets are never closed by it here
+  RunningServer server(config, scene::default_scene());
+  std::vector<std::unique_ptr<RawPeer>> dribbling;
+  const auto dribble_from = [&](int i) {
+    dribbling.push_back(std::make_unique<RawPeer>(server.port(), stranger(i % 8)));
+    dribbling.back()->send_bytes(std::string(1, '\x10'));
+  };
+  for (int i = 0; i < 64; ++i) dribble_from(i);
+  ASSERT_TRUE(eventually([&] { return server.stats().open_connections >= 64; }));
+  int joined = 0;
+  for (int round = 0; round < 10; ++round) {
+    for (int i = 0; i < 8; ++i) dribble_from(i);  // the strangers reopen what was evicted
+    client::Client player(server.client_config("real-" + std::to_string(round)));
+    if (player.connect(3s)) ++joined;
+  }
+  EXPECT_EQ(joined, 10);
+  EXPECT_GE(server.stats().evicted_pending, 10u);
+}
+
 // A client that asks for a full state again and again: the join's full state spends
 // its budget (set here to a tenth of the world's full state a second), so every request
 // within the next seconds is answered ERROR_RATE_LIMITED and none is sent.

@@ -260,7 +260,8 @@ TEST(GameRules, TheRelayCarriesWhatTheRulesDid) {
     sim.submit_input(1, sim.current_tick() + 1, {std::sin(i * 0.1), 1.0});
     sim.step_tick();
     physics::wire::Snapshot snapshot;
-    log.append(sent, sim.current_tick(), first_change, 1, snapshot);
+    log.append(sent, sim.current_tick(), first_change, 1, server::RelayLog::Audience::Followers,
+               snapshot);
     sent = sim.current_tick();
     for (const physics::wire::RelayTick& tick : snapshot.relay()) {
       const relay::FollowResult result = relay::follow(*follower, tick, sim.dt());

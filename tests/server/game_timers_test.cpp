@@ -204,7 +204,7 @@ class ScoreRules : public GameRules {
 void follow_log(const server::RelayLog& log, std::uint64_t after, std::uint64_t up_to,
                 std::uint64_t first_change, double dt, phys::World& world) {
   physics::wire::Snapshot snapshot;
-  log.append(after, up_to, first_change, 1, snapshot);
+  log.append(after, up_to, first_change, 1, server::RelayLog::Audience::Followers, snapshot);
   for (const physics::wire::RelayTick& tick : snapshot.relay()) {
     const relay::FollowResult result = relay::follow(world, tick, dt);
     ASSERT_EQ(result.problem, relay::FollowProblem::None) << result.detail;

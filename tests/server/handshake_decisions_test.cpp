@@ -96,18 +96,18 @@ TEST(HandshakeDecisions, ASecondHelloIsRefusedBeforeAnyOtherCheck) {
   EXPECT_EQ(decision.refusal.text, "a second Hello on the same connection");
 }
 
-// Protocol 2 sent no kinematic bodies and no BodyShape velocity or filter: a client
-// of it would draw a world without its moving walls, so it is refused.
+// A protocol 3 client that asked for the relay could not tell whether it runs the
+// game's rules (Welcome.rules_run_here), so it is refused.
 TEST(HandshakeDecisions, TheVersionBeforeIsRefused) {
   server::Simulation simulation(server_test::free_space_scene());
   Handshake handshake(config_with(4));
   pw::Hello old = hello();
-  old.set_protocol_version(2);
-  ASSERT_EQ(wire::kProtocolVersion, 3u);
+  old.set_protocol_version(3);
+  ASSERT_EQ(wire::kProtocolVersion, 4u);
   const HelloDecision decision = handshake.decide(1, false, old, simulation);
   expect_refused(decision, pw::ERROR_PROTOCOL_VERSION, DropReason::ProtocolVersion);
   EXPECT_EQ(decision.refusal.text,
-            "client speaks protocol version 2, this server speaks version 3");
+            "client speaks protocol version 3, this server speaks version 4");
 }
 
 TEST(HandshakeDecisions, WrongVersionNamesBothVersions) {

@@ -206,7 +206,8 @@ TEST(KinematicViews, TheRelayCarriesWhatTheRulesDoToTheLift) {
   for (int i = 0; i < 120; ++i) {
     sim.step_tick();
     physics::wire::Snapshot snapshot;
-    log.append(sent, sim.current_tick(), first_change, 1, snapshot);
+    log.append(sent, sim.current_tick(), first_change, 1, server::RelayLog::Audience::Followers,
+               snapshot);
     sent = sim.current_tick();
     for (const physics::wire::RelayTick& tick : snapshot.relay()) {
       for (const physics::wire::RelayChange& change : tick.after_step()) {

@@ -49,7 +49,8 @@ struct Follower {
   bool catch_up(const Simulation& sim, const RelayLog& log, std::uint32_t hash_interval = 1) {
     physics::wire::Snapshot snapshot;
     if (!log.holds_after(after_tick)) return false;
-    log.append(after_tick, sim.current_tick(), first_change, hash_interval, snapshot);
+    log.append(after_tick, sim.current_tick(), first_change, hash_interval,
+               server::RelayLog::Audience::Followers, snapshot);
     for (const physics::wire::RelayTick& tick : snapshot.relay()) {
       const relay::FollowResult result = relay::follow(world, tick, sim.dt());
       EXPECT_EQ(result.problem, relay::FollowProblem::None) << result.detail;
@@ -124,7 +125,8 @@ TEST(InputRelay, AWelcomeBetweenTwoJoinsIsSentOnlyTheSecond) {
   ASSERT_TRUE(sim.join(3).has_value());
   sim.step_tick();
   physics::wire::Snapshot snapshot;
-  log.append(follower.after_tick, sim.current_tick(), follower.first_change, 1, snapshot);
+  log.append(follower.after_tick, sim.current_tick(), follower.first_change, 1,
+             server::RelayLog::Audience::Followers, snapshot);
   ASSERT_EQ(snapshot.relay_size(), 1);
   ASSERT_EQ(snapshot.relay(0).changes_size(), 1);
   EXPECT_EQ(snapshot.relay(0).changes(0).added().body_id(), sim.body_of(3)->packed());
@@ -134,7 +136,8 @@ TEST(InputRelay, AWelcomeBetweenTwoJoinsIsSentOnlyTheSecond) {
   // Sent every change instead, the follower's world finds the second body there.
   Follower wrong = Follower::at(sim, log);
   physics::wire::Snapshot again;
-  log.append(sim.current_tick() - 1, sim.current_tick(), 0, 1, again);
+  log.append(sim.current_tick() - 1, sim.current_tick(), 0, 1,
+             server::RelayLog::Audience::Followers, again);
   const relay::FollowResult twice = relay::follow(wrong.world, again.relay(0), sim.dt());
   EXPECT_EQ(twice.problem, relay::FollowProblem::BodyMismatch) << twice.detail;
 }
@@ -170,7 +173,7 @@ TEST(InputRelay, ItsBytesDoNotDependOnTheBodyCount) {
       }
       sim.step_tick();
       physics::wire::Snapshot snapshot;
-      log.append(sent, sim.current_tick(), 0, 4, snapshot);
+      log.append(sent, sim.current_tick(), 0, 4, server::RelayLog::Audience::Followers, snapshot);
       sent = sim.current_tick();
       per_tick.push_back(snapshot.ByteSizeLong());
     }

@@ -38,7 +38,7 @@ TEST(Messages, HelloDefaultsToTheCurrentProtocolVersion) {
   const auto hello = wire::make_hello("bob");
   ASSERT_TRUE(hello.has_hello());
   EXPECT_EQ(hello.hello().protocol_version(), wire::kProtocolVersion);
-  EXPECT_EQ(wire::kProtocolVersion, 3u);
+  EXPECT_EQ(wire::kProtocolVersion, 4u);
   EXPECT_TRUE(hello.hello().access_token().empty());
 }
 

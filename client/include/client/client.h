@@ -53,6 +53,10 @@ struct ClientConfig {
   // the world; Encoding::Inputs needs it. That Welcome holds some 300 bytes a body:
   // raise max_message_bytes for worlds over about 3,000 bodies.
   bool want_world = false;
+  // Hello.run_rules: this client runs the game's rules itself (a PredictingClient
+  // with rules sets it); the relay then carries the game messages, not the rules'
+  // changes. Welcome::rules_run_here says whether the server granted it.
+  bool run_rules = false;
   // The seat to play in (Hello.seat): with the same seats, a lockstep run gives the
   // same bodies whatever order the clients connect in. Unset: the lowest free seat.
   std::optional<std::uint32_t> seat;

@@ -12,7 +12,7 @@
 namespace client {
 
 // The protocol version this client speaks (physics.wire.PROTOCOL_VERSION_CURRENT).
-inline constexpr std::uint32_t kProtocolVersion = 3;
+inline constexpr std::uint32_t kProtocolVersion = 4;
 
 struct Vec2 {
   double x = 0.0;
@@ -126,6 +126,14 @@ struct View {
   std::uint32_t view_hash_interval = 0;
 };
 
+// A player in the world and its body (Welcome::players, Snapshot::players).
+struct Player {
+  std::uint32_t client_id = 0;
+  std::uint64_t body_id = 0;
+  // The player's input the game's rules last saw (RelayPlayer.rules_input), if any.
+  std::optional<Vec2> rules_input;
+};
+
 struct Welcome {
   std::uint32_t protocol_version = 0;
   std::uint32_t client_id = 0;
@@ -146,6 +154,12 @@ struct Welcome {
   // With ClientConfig::want_world: the world after current_tick, in the physics
   // core's own format (phys::World::from_bytes). Empty otherwise.
   std::vector<std::uint8_t> world_state;
+  // With world_state: the players in that world, ascending client id.
+  std::vector<Player> players;
+  // ClientConfig::run_rules was granted: the relay carries the game's messages and
+  // the rules' inputs, not the rules' changes (docs/PROTOCOL.md, "Running the game's
+  // rules").
+  bool rules_run_here = false;
 };
 
 // A body began (end false) or ended to overlap a sensor, at the end of `tick`'s step
@@ -221,6 +235,7 @@ struct Snapshot {
   // (phys::World::from_bytes), empty otherwise.
   std::vector<std::string> relay;
   std::vector<std::uint8_t> world_state;
+  std::vector<Player> players;  // with world_state: the players in that world
 
   const BodyState* find(std::uint64_t body_id) const;
 };

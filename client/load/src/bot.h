@@ -16,8 +16,10 @@ using Clock = std::chrono::steady_clock;
 struct BotResult {
   bool connected = false;
   std::string failure;
-  std::vector<double> latencies_ms;  // input to the first snapshot that covers it
-  std::vector<double> visible_ms;    // input to the first state shown that reflects it
+  std::vector<double> latencies_ms;        // input to the first snapshot that covers it
+  std::vector<double> visible_ms;          // input to the first state shown that reflects it
+  std::vector<double> message_visible_ms;  // game message to the first state holding it
+  bool rules_predicted = false;
   std::uint64_t bytes = 0;
   std::uint64_t snapshots = 0;
   std::uint64_t records = 0;

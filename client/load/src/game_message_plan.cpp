@@ -36,10 +36,19 @@ bool GameMessageSender::take_round(std::chrono::steady_clock::time_point now) {
 
 std::size_t GameMessageSender::before_input(Client& client, std::uint64_t tick,
                                             std::chrono::steady_clock::time_point now) {
+  return before_input(
+      [&client](std::uint64_t at, const std::string& payload) {
+        return client.send_game_message(at, payload);
+      },
+      tick, now);
+}
+
+std::size_t GameMessageSender::before_input(const Send& send, std::uint64_t tick,
+                                            std::chrono::steady_clock::time_point now) {
   if (!take_round(now)) return 0;
   std::size_t sent = 0;
   for (const std::string& payload : plan_.payloads) {
-    if (client.send_game_message(tick, payload)) {
+    if (send(tick, payload)) {
       ++sent;
     } else {
       ++failed_;

@@ -165,6 +165,7 @@ LoadReport run_load(const LoadConfig& config) {
   std::vector<double> delays;
   std::vector<double> ages;
   std::vector<double> visible;
+  std::vector<double> message_visible;
   std::vector<double> frame_cpu;
   double rollback_rate_sum = 0.0;
   double resimulated_rate_sum = 0.0;
@@ -180,6 +181,9 @@ LoadReport run_load(const LoadConfig& config) {
     ++report.bots_connected;
     latencies.insert(latencies.end(), result.latencies_ms.begin(), result.latencies_ms.end());
     visible.insert(visible.end(), result.visible_ms.begin(), result.visible_ms.end());
+    message_visible.insert(message_visible.end(), result.message_visible_ms.begin(),
+                           result.message_visible_ms.end());
+    report.rules_predicted = report.rules_predicted || result.rules_predicted;
     frame_cpu.insert(frame_cpu.end(), result.frame_cpu_ms.begin(), result.frame_cpu_ms.end());
     report.largest_correction_m = std::max(report.largest_correction_m, result.largest_correction);
     report.largest_smoothed_correction_m =
@@ -219,6 +223,8 @@ LoadReport run_load(const LoadConfig& config) {
   report.predicting = config.predict;
   report.own_input_visible_ms_median = quantile(visible, 0.5);
   report.own_input_visible_ms_p99 = quantile(visible, 0.99);
+  report.own_message_visible_ms_median = quantile(message_visible, 0.5);
+  report.own_message_visible_ms_p99 = quantile(message_visible, 0.99);
   report.frames = frame_cpu.size();
   report.frame_cpu_ms_median = quantile(frame_cpu, 0.5);
   report.frame_cpu_ms_p99 = quantile(frame_cpu, 0.99);

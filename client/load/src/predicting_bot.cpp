@@ -17,18 +17,25 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
   predicting.client.name.append("-").append(std::to_string(index));
   predicting.pacer = config.pacer;
   predicting.prediction = config.prediction;
+  if (config.make_rules) predicting.rules = config.make_rules();
   PredictingClient bot(predicting);
   result.connected = bot.connect(config.connect_timeout);
   if (!result.connected) result.failure = bot.error();
   start.arrive_and_wait();
   if (!result.connected) return;
 
-  std::deque<PendingInput> shown;      // waiting to be stepped by the prediction
-  std::deque<PendingInput> confirmed;  // waiting for a snapshot that covers them
+  std::deque<PendingInput> shown;           // waiting to be stepped by the prediction
+  std::deque<PendingInput> confirmed;       // waiting for a snapshot that covers them
+  std::deque<PendingInput> messages_shown;  // game messages waiting to be in a shown state
   GameMessageSender messages(config.messages);
   bool measuring = false;
+  const GameMessageSender::Send send = [&](std::uint64_t tick, const std::string& payload) {
+    return bot.send_game_message(tick, payload);
+  };
   const InputPacer::InputFor input = [&](std::uint64_t tick) -> Vec2 {
-    messages.before_input(bot.connection(), tick, Clock::now());
+    if (messages.before_input(send, tick, Clock::now()) > 0 && measuring) {
+      messages_shown.push_back({tick, Clock::now()});
+    }
     if (measuring) {
       shown.push_back({tick, Clock::now()});
       confirmed.push_back(shown.back());
@@ -79,6 +86,15 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
           std::chrono::duration<double, std::milli>(now - shown.front().sent_at).count());
       shown.pop_front();
     }
+    // A message's effect is in the prediction when the rules run in it; otherwise only
+    // in the confirmed state, once the server's effects of its tick arrived.
+    const std::uint64_t holds_messages_to =
+        bot.core().runs_rules() ? predicted : bot.core().confirmed_tick();
+    while (!messages_shown.empty() && holds_messages_to >= messages_shown.front().tick) {
+      result.message_visible_ms.push_back(
+          std::chrono::duration<double, std::milli>(now - messages_shown.front().sent_at).count());
+      messages_shown.pop_front();
+    }
     if (polled != PollResult::Snapshot) continue;
     const Snapshot& snapshot = *bot.last_snapshot();
     if (!first_tick) {
@@ -119,6 +135,7 @@ void run_predicting_bot(const LoadConfig& config, int index, std::barrier<>& sta
   result.resyncs = after.prediction.resyncs;
   result.game_messages_received += bot.connection().take_game_messages().size();
   result.game_messages_sent = messages.sent();
+  result.rules_predicted = bot.core().runs_rules();
   bot.disconnect("load run finished");
 }
 

@@ -11,6 +11,7 @@ namespace {
 PredictingClientConfig with_world(PredictingClientConfig config) {
   config.client.want_world = true;
   config.client.view.encoding = Encoding::Inputs;
+  config.client.run_rules = config.rules != nullptr;
   // The prediction is shown as soon as an input leaves, not at the next snapshot.
   config.pacer.return_after_send = true;
   return config;
@@ -30,6 +31,7 @@ bool PredictingClient::connect(std::chrono::milliseconds timeout) {
   last_snapshot_.reset();
   start_error_.clear();
   core_ = PredictionCore(config_.prediction);
+  core_.set_rules(config_.rules);
   if (!connection_.connect(timeout)) return false;
   if (!core_.start(connection_.welcome())) {
     start_error_ = core_.error();
@@ -74,6 +76,12 @@ PollResult PredictingClient::poll(std::chrono::steady_clock::time_point deadline
   if (took) return PollResult::Snapshot;
   if (pacer_ && pacer_->last_sent() != sent_before) return PollResult::InputSent;
   return PollResult::Deadline;
+}
+
+bool PredictingClient::send_game_message(std::uint64_t tick, const std::string& payload) {
+  if (!connection_.send_game_message(tick, payload)) return false;
+  core_.send_message(tick, payload);
+  return true;
 }
 
 PredictingStats PredictingClient::stats() const {

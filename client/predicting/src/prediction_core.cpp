@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <string>
 #include <utility>
 
+#include "prediction_rules.h"
 #include "relay/follow_relay.h"
 #include "wire.pb.h"
 
@@ -25,22 +27,27 @@ std::string hex(std::uint64_t value) {
   return text;
 }
 
-// Below this a correction is gone (m): a nanometre is far under a pixel.
-constexpr double kNegligibleCorrection = 1e-9;
-
 }  // namespace
 
 PredictionCore::PredictionCore(PredictionConfig config) : config_(config) {}
 
+void PredictionCore::set_rules(std::shared_ptr<server::GameRules> rules) {
+  rules_ = rules ? std::make_shared<PredictionRules>(std::move(rules)) : nullptr;
+}
+
 void PredictionCore::start(phys::World world, std::uint64_t tick, std::uint64_t own_body,
-                           double tick_rate, double max_acceleration) {
+                           double tick_rate, double max_acceleration,
+                           const std::vector<Player>& players, std::uint32_t own_client) {
   dt_ = 1.0 / tick_rate;  // as the server's step: bit for bit the same dt
   max_acceleration_ = max_acceleration > 0.0 ? max_acceleration : 0.0;
   decay_per_tick_ =
       config_.smoothing_time_constant > 0.0 ? std::exp(-dt_ / config_.smoothing_time_constant) : 0;
   own_ = own_body;
+  own_client_ = own_client;
   ring_.assign(config_.max_rollback, Slot{});
   inputs_.clear();
+  own_messages_.clear();
+  if (rules_ && rules_->wants_contact_events()) world.set_contact_events(true);
   corrections_.clear();
   failed_ = false;
   error_.clear();
@@ -51,7 +58,36 @@ void PredictionCore::start(phys::World world, std::uint64_t tick, std::uint64_t 
   frontier_ = tick;
   target_tick_ = tick;
   begin(std::move(world), tick);
+  reset_players(players);
   started_ = true;
+}
+
+void PredictionCore::reset_players(const std::vector<Player>& players) {
+  confirmed_own_rules_input_.reset();
+  if (!rules_) return;
+  rules_->reset(players, own_client_);
+  for (const Player& player : players) {
+    if (player.client_id == own_client_ && player.rules_input) {
+      confirmed_own_rules_input_ = to_phys(*player.rules_input);
+    }
+  }
+}
+
+void PredictionCore::send_message(std::uint64_t tick, std::string payload) {
+  // A tick predicted already is not stepped again for it: its confirmation (with the
+  // message, or with it filed later) rolls the prediction back.
+  if (!rules_ || tick <= world_tick_) return;
+  own_messages_[tick].push_back(std::move(payload));
+}
+
+std::vector<server::OutgoingGameMessage> PredictionCore::predicted_messages() const {
+  std::vector<server::OutgoingGameMessage> out;
+  for (std::uint64_t tick = confirmed_tick_ + 1; tick <= world_tick_ && !ring_.empty(); ++tick) {
+    const Slot& predicted = ring_[static_cast<std::size_t>(tick % ring_.size())];
+    if (predicted.tick != tick) continue;
+    out.insert(out.end(), predicted.sent.begin(), predicted.sent.end());
+  }
+  return out;
 }
 
 void PredictionCore::begin(phys::World world, std::uint64_t tick) {
@@ -92,11 +128,14 @@ void PredictionCore::forget_old_inputs() {
   auto it = inputs_.upper_bound(confirmed_tick_);
   if (it == inputs_.begin()) return;
   inputs_.erase(inputs_.begin(), std::prev(it));
+  own_messages_.erase(own_messages_.begin(), own_messages_.upper_bound(confirmed_tick_));
 }
 
 void PredictionCore::on_snapshot(const Snapshot& snapshot) {
   if (!started_ || failed_) return;
-  if (!snapshot.world_state.empty()) apply_world_state(snapshot.tick, snapshot.world_state);
+  if (!snapshot.world_state.empty()) {
+    apply_world_state(snapshot.tick, snapshot.world_state, snapshot.players);
+  }
   if (failed_) return;
   // The world is at the confirmed tick: relayed ticks are applied to it directly.
   bool on_confirmed = world_tick_ == confirmed_tick_;
@@ -160,6 +199,11 @@ bool PredictionCore::matches(const physics::wire::RelayTick& relay) const {
   }
   const Slot& predicted = ring_[static_cast<std::size_t>(relay.tick() % ring_.size())];
   if (predicted.tick != relay.tick()) return false;
+  // The rules were handed other inputs or messages (another player's message, the
+  // own one filed at another tick): their effects were not predicted.
+  if (rules_ && !rules_->same(relay, {predicted.rules_inputs, predicted.rules_messages})) {
+    return false;
+  }
   phys::Vec2 own = confirmed_own_acceleration_;
   for (const physics::wire::RelayInput& input : relay.inputs()) {
     const phys::Vec2 a{input.ax(), input.ay()};
@@ -180,6 +224,7 @@ void PredictionCore::confirm_predicted(const physics::wire::RelayTick& relay) {
   std::swap(confirmed_, predicted.saved);
   confirmed_tick_ = relay.tick();
   confirmed_own_acceleration_ = predicted.own_acceleration;
+  confirmed_own_rules_input_ = predicted.own_rules_input;
   ++stats_.confirmed_ticks;
   ++stats_.matched_ticks;
   if (relay.has_state_hash()) {
@@ -199,7 +244,20 @@ bool PredictionCore::apply(const physics::wire::RelayTick& relay) {
   if (own_ != 0) {
     if (const auto own = world_.body(id_of(own_))) confirmed_own_acceleration_ = own->acceleration;
   }
-  step_world();
+  if (rules_) {
+    rules_->apply_players(relay);
+    if (std::string problem = rules_->check(relay); !problem.empty()) {
+      ++stats_.bad_changes;
+      ask_full_state(std::move(problem));
+      return false;
+    }
+    const RulesTickInputs in = rules_->confirmed(relay);
+    std::vector<server::OutgoingGameMessage> sent_by_server;  // the server sends its own
+    if (!step_with_rules(in.inputs, in.messages, sent_by_server)) return false;
+    confirmed_own_rules_input_ = rules_->own_input_after(relay, confirmed_own_rules_input_);
+  } else {
+    step_world();
+  }
   const relay::FollowResult after = relay::apply_after_step(world_, relay);
   if (after.problem != relay::FollowProblem::None) {
     ++stats_.bad_changes;
@@ -223,22 +281,56 @@ void PredictionCore::step_world() {
   }
 }
 
+bool PredictionCore::step_with_rules(const std::vector<server::AppliedInput>& inputs,
+                                     const std::vector<server::ClientGameMessage>& messages,
+                                     std::vector<server::OutgoingGameMessage>& sent) {
+  const std::uint64_t tick = world_tick_ + 1;
+  try {
+    rules_->before_step(world_, tick, dt_, {inputs, messages}, sent);
+    step_world();
+    rules_->after_step(world_, tick, dt_, sent);
+  } catch (const std::exception& thrown) {
+    // The server's rules would have failed the tick: this world is not the server's.
+    ++stats_.rules_errors;
+    ask_full_state("the game's rules threw at tick " + std::to_string(tick) + ": " + thrown.what());
+    return false;
+  }
+  return true;
+}
+
 void PredictionCore::predict_to(std::uint64_t tick) {
   const std::uint64_t limit = confirmed_tick_ + config_.max_rollback;
   const std::uint64_t goal = std::min(tick, limit);
-  while (world_tick_ < goal) {
-    const std::uint64_t next = world_tick_ + 1;
-    Slot& predicted = slot(next);
-    predicted.own_acceleration = {};
-    if (own_ != 0 && world_.contains(id_of(own_))) {
-      if (const auto input = own_input_at(next)) world_.set_acceleration(id_of(own_), *input);
-      predicted.own_acceleration = world_.body(id_of(own_))->acceleration;
-    }
-    if (next > frontier_) ++stats_.predicted_ticks;
-    step_world();
-    predicted.tick = next;
-    world_.save_into(predicted.saved);
+  while (world_tick_ < goal) predict_one(world_tick_ + 1);
+}
+
+void PredictionCore::predict_one(std::uint64_t next) {
+  Slot& predicted = slot(next);
+  predicted.own_acceleration = {};
+  std::optional<phys::Vec2> fresh;  // the own input sent for this very tick
+  if (own_ != 0 && world_.contains(id_of(own_))) {
+    if (const auto input = own_input_at(next)) world_.set_acceleration(id_of(own_), *input);
+    predicted.own_acceleration = world_.body(id_of(own_))->acceleration;
+    if (const auto sent = inputs_.find(next); sent != inputs_.end()) fresh = sent->second;
   }
+  if (next > frontier_) ++stats_.predicted_ticks;
+  predicted.sent.clear();
+  if (rules_) {
+    const std::optional<phys::Vec2> seen =
+        next == confirmed_tick_ + 1 ? confirmed_own_rules_input_ : slot(next - 1).own_rules_input;
+    const auto own_messages = own_messages_.find(next);
+    RulesTickInputs in = rules_->predicted(
+        fresh, seen, id_of(own_),
+        own_messages == own_messages_.end() ? std::vector<std::string>{} : own_messages->second);
+    predicted.own_rules_input = in.inputs.empty() ? seen : fresh;
+    predicted.rules_inputs = std::move(in.inputs);
+    predicted.rules_messages = std::move(in.messages);
+    step_with_rules(predicted.rules_inputs, predicted.rules_messages, predicted.sent);
+  } else {
+    step_world();
+  }
+  predicted.tick = next;
+  world_.save_into(predicted.saved);
 }
 
 void PredictionCore::advance_to(std::uint64_t tick) {
@@ -298,76 +390,5 @@ std::uint64_t PredictionCore::confirmed_hash() {
 }
 
 phys::World PredictionCore::confirmed_world() const { return phys::World(confirmed_); }
-
-std::vector<PredictionCore::Position> PredictionCore::positions() const {
-  std::vector<Position> out;
-  out.reserve(world_.dynamic_body_count());
-  world_.for_each_body([&](const phys::BodyState& body) {
-    if (body.motion != phys::Motion::Static) out.push_back({body.id.packed(), body.position});
-  });
-  return out;
-}
-
-void PredictionCore::add_corrections(const std::vector<Position>& before) {
-  for (const Position& old : before) {
-    const auto now = world_.body(id_of(old.id));
-    if (!now) continue;
-    const phys::Vec2 delta = old.position - now->position;
-    const double size = phys::length(delta);
-    if (size == 0.0) continue;
-    stats_.largest_correction = std::max(stats_.largest_correction, size);
-    phys::Vec2& shown = corrections_[old.id];
-    shown += delta;
-    const double total = phys::length(shown);
-    if (total > config_.snap_distance) {
-      // Too far to glide: shown where it is at once.
-      stats_.largest_smoothed_correction = std::max(stats_.largest_smoothed_correction, total);
-      corrections_.erase(old.id);
-    }
-  }
-}
-
-void PredictionCore::decay_corrections(std::uint64_t ticks) {
-  for (auto it = corrections_.begin(); it != corrections_.end();) {
-    if (!world_.contains(id_of(it->first))) {
-      it = corrections_.erase(it);
-      continue;
-    }
-    // Past a few hundred ticks any correction is long gone.
-    for (std::uint64_t i = 0; i < std::min<std::uint64_t>(ticks, 1000); ++i) {
-      const double moved = phys::length(it->second) * (1.0 - decay_per_tick_);
-      stats_.largest_smoothed_correction = std::max(stats_.largest_smoothed_correction, moved);
-      it->second = it->second * decay_per_tick_;
-    }
-    if (phys::length(it->second) < kNegligibleCorrection) {
-      it = corrections_.erase(it);
-    } else {
-      ++it;
-    }
-  }
-}
-
-Vec2 PredictionCore::correction(std::uint64_t body_id) const {
-  const auto it = corrections_.find(body_id);
-  if (it == corrections_.end()) return {};
-  return {it->second.x, it->second.y};
-}
-
-RenderState PredictionCore::render() const {
-  RenderState state;
-  state.tick = world_tick_;
-  state.bodies.reserve(world_.dynamic_body_count());
-  world_.for_each_body([&](const phys::BodyState& body) {
-    if (body.motion == phys::Motion::Static) return;
-    RenderBody& shown = state.bodies.emplace_back();
-    shown.body_id = body.id.packed();
-    shown.motion = body.motion == phys::Motion::Kinematic ? Motion::Kinematic : Motion::Dynamic;
-    shown.predicted_position = {body.position.x, body.position.y};
-    shown.velocity = {body.velocity.x, body.velocity.y};
-    const Vec2 offset = correction(shown.body_id);
-    shown.position = {body.position.x + offset.x, body.position.y + offset.y};
-  });
-  return state;
-}
 
 }  // namespace client

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "client/prediction_core.h"
+#include "prediction_rules.h"
 
 namespace client {
 
@@ -20,12 +21,20 @@ bool PredictionCore::start(const Welcome& welcome) {
                                      : "the Welcome's world does not parse: " + why);
     return false;
   }
+  if (rules_ && !welcome.rules_run_here) {
+    fail(
+        "the server does not run the game's rules for this client (Welcome.rules_run_here): "
+        "it runs no rules, or is an older version");
+    return false;
+  }
   start(std::move(*world), welcome.current_tick, welcome.spectator ? 0 : welcome.body_id,
-        welcome.tick_rate, welcome.max_acceleration);
+        welcome.tick_rate, welcome.max_acceleration, welcome.players,
+        welcome.spectator ? 0 : welcome.client_id);
   return true;
 }
 
-void PredictionCore::apply_world_state(std::uint64_t tick, std::span<const std::uint8_t> bytes) {
+void PredictionCore::apply_world_state(std::uint64_t tick, std::span<const std::uint8_t> bytes,
+                                       const std::vector<Player>& players) {
   std::string why;
   auto world = phys::World::from_bytes(bytes, &why);
   if (!world) {
@@ -48,7 +57,9 @@ void PredictionCore::apply_world_state(std::uint64_t tick, std::span<const std::
     compare_ = positions();
     compare_tick_ = world_tick_;
   }
+  if (rules_ && rules_->wants_contact_events()) world->set_contact_events(true);
   begin(std::move(*world), tick);
+  reset_players(players);
   matched_since_resync_ = false;
   ++stats_.resyncs;
 }

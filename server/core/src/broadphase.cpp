@@ -66,6 +66,8 @@ std::int32_t UniformGrid::cell_y(double y) const {
   return static_cast<std::int32_t>(v);
 }
 
+// Long on purpose: the cell size, its growth and the counting sort share the sizes and
+// scratch the steps before them compute; each step is commented where it starts.
 void UniformGrid::build(std::span<const Aabb> boxes) {
   boxes_.assign(boxes.begin(), boxes.end());
   const auto n = static_cast<std::uint32_t>(boxes_.size());
@@ -156,6 +158,8 @@ void UniformGrid::build(std::span<const Aabb> boxes) {
   for (std::size_t k = 0; k < cell_items_.size(); ++k) cell_boxes_[k] = boxes_[cell_items_[k]];
 }
 
+// Long on purpose: the branch-free cell loops, the large boxes and the final sort share
+// one output buffer and its running end, kept in registers across the loops.
 void UniformGrid::find_pairs(std::vector<BodyPair>& out) const {
   // Each cell is tested against itself and four of its neighbours (east, and the
   // three above), so every pair of filed boxes is tested exactly once: the cells

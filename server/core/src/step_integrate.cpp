@@ -71,6 +71,8 @@ class FreeMotionPass : StepPhase {
 // against one instance (bench/compare-core.sh, thread CPU time per step): never
 // prefetching, rain-16000 ran 1.052x (sleep on) / 1.083x (off); always, the awake
 // pyramid-5050 ran 1.008x, 1.7% over the run-to-run noise's mean.
+// Long on purpose: one walk over the awake bodies integrates, caps speeds and checks
+// the pairs' reuse while each body is in cache; split, each part would walk them again.
 template <bool kPrefetch>
 inline FreeMotion FreeMotionPass::run() {
   const std::size_t n = w_.lists.active.size();

@@ -5,10 +5,12 @@
 // bodies, the bodies, the warm-start pool.
 // Writes: the bodies' velocities, held accelerations and loads; the warm-start
 // pool; scratch.velocity (its contact records, handed on to sleep) and to_wake.
+// This file gathers the contacts and runs the iterations; the impulses on one
+// contact are contact_impulses.h's.
 #include <algorithm>
 #include <cmath>
 
-#include "branchless.h"
+#include "contact_impulses.h"
 #include "step_phases.h"
 #include "step_shared.h"
 
@@ -27,17 +29,9 @@ class VelocitySolver : StepPhase {
   std::span<const ContactRecord> run();
 
  private:
-  template <bool kFriction, bool kKinematic>
-  static void solve_contacts(std::span<ContactRecord> contacts, Vec2* solver,
-                             std::uint8_t* supported, bool shock, bool first_iteration,
-                             bool& changed);
-  template <bool kFixed, bool kFriction, bool kKinematic>
-  static void solve_contact(ContactRecord& k, Vec2* solver, std::uint8_t* supported, bool shock,
-                            bool first_iteration, bool& changed);
+  void gather_contacts(std::uint32_t active);
+  void iterate(std::span<ContactRecord> contacts, std::uint32_t active);
   void gather_contact(std::uint32_t c);
-  template <bool kFixed, bool kKinematic>
-  static bool apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa, double wb,
-                                     double mass);
   void update_held();
   void update_held(std::size_t p, Body& b) const;
   static double held_part(double change, double a);
@@ -58,6 +52,32 @@ class VelocitySolver : StepPhase {
 // The velocity component along each contact's normal is reflected and scaled by
 // the restitution (zeroed below the rest speed), impulses split by inverse mass.
 std::span<const ContactRecord> VelocitySolver::run() {
+  const auto active = static_cast<std::uint32_t>(w_.lists.active.size());
+  gather_contacts(active);
+  if (contact_count_ == 0) {  // no contact holds anything
+    if (c_.hold) update_held();
+    if (kinematic_) stop_pinned_bodies();
+    return {};
+  }
+  ++w_.counters.velocity_solves;
+  const std::span<ContactRecord> contacts(x_.velocity.contacts.data(), contact_count_);
+  iterate(contacts, active);
+  // The velocities go back to the bodies; what the contacts held of each one's
+  // acceleration is found in the same walk (update_held's, while the body is in cache).
+  const auto& velocity = x_.velocity.solver_velocity;
+  for (std::uint32_t p = 0; p < active; ++p) {
+    if (scattered_) prefetch_ahead(p);
+    Body& b = body(w_.lists.active[p]);
+    b.velocity = velocity[p];
+    if (c_.hold) update_held(p, b);
+  }
+  if (kinematic_) stop_pinned_bodies();
+  return contacts;
+}
+
+// The contact records of this sub-step, and the dense copy of the awake bodies'
+// velocities the iterations work on.
+inline void VelocitySolver::gather_contacts(std::uint32_t active) {
   // Records are written in place: the array only grows (no clearing, no growth
   // check per contact), contact_count_ says how many are this sub-step's.
   if (x_.velocity.contacts.size() < w_.candidates.list.size()) {
@@ -80,7 +100,6 @@ std::span<const ContactRecord> VelocitySolver::run() {
   // its velocity is cancelled into its corrections right there, while it is in
   // cache. With no contact at all every correction is zero and that changes nothing.
   const double per_second = 1.0 / c_.h;
-  const auto active = static_cast<std::uint32_t>(w_.lists.active.size());
   const auto candidate_count = static_cast<std::uint32_t>(w_.candidates.list.size());
   // The iterations read and write only awake bodies' velocities (a fixed body's
   // counts as zero): they work on a dense copy by position, written back at the end.
@@ -110,14 +129,12 @@ std::span<const ContactRecord> VelocitySolver::run() {
     b.velocity = v;
     velocity[p] = v;
   }
-  if (contact_count_ == 0) {  // no contact holds anything
-    if (c_.hold) update_held();
-    if (kinematic_) stop_pinned_bodies();
-    return {};
-  }
-  ++w_.counters.velocity_solves;
-  const std::span<ContactRecord> contacts(x_.velocity.contacts.data(), contact_count_);
-  Vec2* const solver = velocity.data();
+}
+
+// The iterations over the contacts (contact_impulses.h, or ContactLanes two at a
+// time), until one changes nothing.
+inline void VelocitySolver::iterate(std::span<ContactRecord> contacts, std::uint32_t active) {
+  Vec2* const solver = x_.velocity.solver_velocity.data();
   const bool shock = c_.shock;
   if (lanes_) {
     const std::span<const ContactWeights> weights(x_.velocity.contact_weights.data(),
@@ -144,98 +161,6 @@ std::span<const ContactRecord> VelocitySolver::run() {
     if (!changed && iteration > 0) break;
   }
   if (lanes_) x_.velocity.lanes.unpack(contacts);
-  // The velocities go back to the bodies; what the contacts held of each one's
-  // acceleration is found in the same walk (update_held's, while the body is in cache).
-  for (std::uint32_t p = 0; p < active; ++p) {
-    if (scattered_) prefetch_ahead(p);
-    Body& b = body(w_.lists.active[p]);
-    b.velocity = velocity[p];
-    if (c_.hold) update_held(p, b);
-  }
-  if (kinematic_) stop_pinned_bodies();
-  return contacts;
-}
-
-// One iteration over the contacts. Built apart for scenes with contact friction
-// and without (kFriction): without it, no contact has friction to apply.
-template <bool kFriction, bool kKinematic>
-inline void VelocitySolver::solve_contacts(std::span<ContactRecord> contacts, Vec2* solver,
-                                           std::uint8_t* supported, bool shock,
-                                           bool first_iteration, bool& changed) {
-  for (ContactRecord& k : contacts) {
-    if (k.fixed) {
-      solve_contact<true, kFriction, kKinematic>(k, solver, supported, shock, first_iteration,
-                                                 changed);
-    } else {
-      solve_contact<false, kFriction, kKinematic>(k, solver, supported, shock, first_iteration,
-                                                  changed);
-    }
-  }
-}
-
-// One contact in one iteration of the velocity solver, built apart for contacts
-// with a fixed body (no velocity of its own) and between two awake bodies, so
-// that neither carries the other's tests.
-template <bool kFixed, bool kFriction, bool kKinematic>
-inline void VelocitySolver::solve_contact(ContactRecord& k, Vec2* solver, std::uint8_t* supported,
-                                          bool shock, bool first_iteration, bool& changed) {
-  Vec2 fixed_velocity{};  // what vb names for a fixed body; never read
-  Vec2& va = solver[k.lower_pos];
-  Vec2& vb = kFixed ? fixed_velocity : solver[k.upper_pos];
-  const Vec2 n = k.normal;
-  double wa = k.inv_mass_lower;
-  double wb = k.inv_mass_upper;
-  phys::carry(supported, shock, kFixed, k.lower_pos, k.upper_pos, k.up, wa, wb);
-  // The pair's effective mass, once for the normal and the friction impulse.
-  const double mass = 1.0 / (wa + wb);
-  double closing = dot((kFixed ? Vec2{} : vb) - va, n);
-  // An immovable supporter can stop the bodies it carries but never lift them:
-  // its own motion away from them counts as zero. Otherwise a supported body
-  // moving up hands its velocity to every body above it, all the way up a pile.
-  if (wa == 0.0 && !kFixed) closing += std::max(dot(va, n), 0.0);
-  if (wb == 0.0 && !kFixed) closing -= std::min(dot(vb, n), 0.0);
-  if (wa + wb <= 0.0) return;
-  // Sequential impulses: the impulse accumulated on a contact may shrink again
-  // but never pull (stay >= 0), so iterations converge to a velocity that
-  // neither approaches nor separates from resting contacts.
-  double& total = k.impulse;
-  if (first_iteration && k.warm > 0.0) {
-    // Warm start: begin from last step's impulse on this pair, so resting
-    // contacts converge over steps instead of within one.
-    total = k.warm;
-    va -= n * (total * wa);
-    if (!kFixed) vb += n * (total * wb);
-    changed = true;
-    if (k.mu > 0.0) {
-      // Friction warm-starts too, within the cone of the warm normal impulse
-      // (Box2D's warm start of the tangent impulse): a pile holds its
-      // sideways loads through chains of friction that a few iterations from
-      // zero would not rebuild every step.
-      const Vec2 t{-n.y, n.x};
-      const double limit = k.mu * total;
-      k.tangent_impulse = std::clamp(k.warm_tangent, -limit, limit);
-      va -= t * (k.tangent_impulse * wa);
-      if (!kFixed) vb += t * (k.tangent_impulse * wb);
-      apply_contact_friction<kFixed, kKinematic>(k, va, vb, wa, wb, mass);
-    }
-    return;
-  }
-  // Without friction, no branch on whether the impulse clamps or changes: in a
-  // flowing pile either is a coin toss per contact (a zero impulse changes no
-  // velocity's value), and resolve is 21% faster so. With friction, where
-  // contacts hold and their impulses settle, the branches won (by 4.6%).
-  const double unclamped = total + (k.target - closing) * mass;
-  const double wanted = kFriction ? std::max(unclamped, 0.0) : at_least_zero(unclamped);
-  const double impulse = wanted - total;
-  if (!kFriction || impulse != 0.0) {
-    total = wanted;
-    va -= n * (impulse * wa);
-    if (!kFixed) vb += n * (impulse * wb);
-    changed = changed | (std::fabs(impulse) > 1.0e-12);
-  }
-  if (kFriction && k.mu > 0.0) {
-    changed = apply_contact_friction<kFixed, kKinematic>(k, va, vb, wa, wb, mass) || changed;
-  }
 }
 
 // One marked candidate as a contact record (targets from the velocities before
@@ -296,26 +221,6 @@ __attribute__((always_inline)) inline void VelocitySolver::gather_contact(std::u
     x_.velocity.in_contact[cand.lower_pos] = 1;
     if (!cand.fixed) x_.velocity.in_contact[cand.upper_pos] = 1;
   }
-}
-
-// Coulomb friction: the tangential impulse accumulated on a contact stays within
-// mu times its normal impulse (a contact that pushes nothing holds nothing).
-template <bool kFixed, bool kKinematic>
-inline bool VelocitySolver::apply_contact_friction(ContactRecord& k, Vec2& va, Vec2& vb, double wa,
-                                                   double wb, double mass) {
-  const Vec2 n = k.normal;
-  const Vec2 t{-n.y, n.x};
-  double sliding = dot((kFixed ? Vec2{} : vb) - va, t);
-  if (kFixed && kKinematic) sliding += k.upper_slide;
-  const double limit = k.mu * k.impulse;
-  double& total = k.tangent_impulse;
-  const double wanted = std::clamp(total - sliding * mass, -limit, limit);
-  const double impulse = wanted - total;
-  if (impulse == 0.0) return false;
-  total = wanted;
-  va -= t * (impulse * wa);
-  if (!kFixed) vb += t * (impulse * wb);
-  return std::fabs(impulse) > 1.0e-12;
 }
 
 // What the contacts did to a body's velocity this sub-step, per axis, is how

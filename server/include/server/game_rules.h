@@ -60,13 +60,51 @@ struct JoinDecision {
   std::optional<phys::BodyDef> body;
 };
 
-class Simulation;
+// A message the rules sent (GameWorld::send, broadcast): client 0 is everyone.
+struct OutgoingGameMessage {
+  ClientId client = 0;
+  std::uint64_t tick = 0;
+  std::string payload;
+};
+
+inline constexpr std::size_t kMaxOutgoingGameMessageBytes = 65536;
+
+// What runs the rules and what a GameWorld works on: the server's Simulation, and a
+// predicting client's world (client/prediction_core.h), which runs the same rules on
+// the same ticks. The reports let the server pass the rules' changes on to snapshots
+// and the relay; a predicting client keeps only the messages.
+class RulesHost {
+ public:
+  virtual phys::World& rules_world() = 0;
+  virtual const phys::World& rules_world() const = 0;
+  // The players in the world, ascending id, with their bodies.
+  virtual const std::map<ClientId, phys::BodyId>& rules_players() const = 0;
+  // The tick being stepped (or the last one stepped, between ticks).
+  virtual std::uint64_t rules_tick() const = 0;
+  virtual double rules_dt() const = 0;
+  // The game messages delivered at this tick (empty outside before_step).
+  virtual const std::vector<ClientGameMessage>& rules_messages() const = 0;
+  // A body the rules made, one they removed, and one they moved (each value given).
+  virtual void rules_added(phys::BodyId id, const phys::BodyDef& def) = 0;
+  virtual void rules_removed(phys::BodyId id) = 0;
+  virtual void rules_set(phys::BodyId id, std::optional<phys::Vec2> position,
+                         std::optional<phys::Vec2> velocity,
+                         std::optional<phys::Vec2> acceleration) = 0;
+  // GameWorld::send and broadcast (client 0), already checked against the limit.
+  virtual void rules_send(OutgoingGameMessage message) = 0;
+
+ protected:
+  ~RulesHost() = default;
+};
 
 // The rules' handle on the world: read anything, change bodies, nothing else. What
 // the rules change reaches every client as any change does (bodies added and
 // removed in snapshots; every change in the input relay, docs/PROTOCOL.md 5.12).
 class GameWorld {
  public:
+  // The handle the host gives the rules for one call.
+  explicit GameWorld(RulesHost& host) : host_(host) {}
+
   // The tick being stepped (before_step, after_step), or the last one stepped.
   std::uint64_t tick() const;
   double dt() const;
@@ -155,14 +193,13 @@ class GameWorld {
   const std::vector<ClientGameMessage>& messages() const;
   // Messages to a player, or to every player and spectator, sent once the tick's
   // snapshots are (ServerMessage.game_message, stamped with the tick). False for a
-  // payload over 65,536 bytes (nothing sent).
+  // payload over 65,536 bytes (nothing sent). In a predicting client that runs the
+  // rules they are its predicted messages (PredictionCore::predicted_messages).
   bool send(ClientId client, std::string payload);
   bool broadcast(std::string payload);
 
  private:
-  friend class Simulation;
-  explicit GameWorld(Simulation& simulation) : simulation_(simulation) {}
-  Simulation& simulation_;
+  RulesHost& host_;
 };
 
 class GameRules {

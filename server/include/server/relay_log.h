@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <deque>
 #include <optional>
+#include <string>
 
 #include "physics/body.h"
 #include "physics/game_state.h"
@@ -36,6 +37,13 @@ class RelayLog {
            std::optional<phys::Vec2> acceleration);
   // The world's game state, whole (RelayChange.game_state).
   void game_state(const phys::GameState& state);
+  // A player joined with this body, or left (RelayTick.joined, left).
+  void joined(std::uint32_t client, phys::BodyId body);
+  void left(std::uint32_t client);
+  // For clients that run the rules: an input the rules were handed at `tick`, and a
+  // game message delivered at it (RelayTick.rules_inputs, messages).
+  void rules_input(std::uint64_t tick, std::uint32_t client, phys::Vec2 acceleration);
+  void game_message(std::uint64_t tick, std::uint32_t client, const std::string& payload);
   // Between these, changes go to the open tick's list of the rules' phase
   // (RelayTick.before_step or after_step) instead of its `changes`.
   enum class RulesPhase { BeforeStep, AfterStep };
@@ -46,11 +54,14 @@ class RelayLog {
   std::uint64_t next_change() const { return next_change_; }
   // Whether the ticks after `after_tick` up to the last stepped are all held.
   bool holds_after(std::uint64_t after_tick) const;
+  // What a client is sent of each tick: the rules' changes (before_step, after_step),
+  // or, to a client that runs the rules itself, the rules' inputs and messages.
+  enum class Audience { Followers, RulesRunners };
   // Appends to `out` the ticks after `after_tick` up to `up_to`, leaving out changes
   // numbered below `first_change`; each tick that is a multiple of `hash_interval`
   // carries its state hash. holds_after(after_tick) must be true.
   void append(std::uint64_t after_tick, std::uint64_t up_to, std::uint64_t first_change,
-              std::uint32_t hash_interval, physics::wire::Snapshot& out) const;
+              std::uint32_t hash_interval, Audience audience, physics::wire::Snapshot& out) const;
 
   std::size_t ticks_held() const { return ticks_.size(); }
 
@@ -71,5 +82,12 @@ class RelayLog {
   std::optional<RulesPhase> phase_;
   std::uint64_t next_change_ = 0;
 };
+
+class Simulation;
+
+// The players, their bodies and the inputs the rules last saw, ascending client id
+// (Welcome.players, Snapshot.players).
+void write_players(const Simulation& simulation,
+                   google::protobuf::RepeatedPtrField<physics::wire::RelayPlayer>& out);
 
 }  // namespace server

@@ -16,6 +16,7 @@
 #include "scene/scene.h"
 #include "server/game_rules.h"
 #include "server/log_format.h"
+#include "ticket/ticket.h"
 
 namespace server {
 
@@ -115,6 +116,13 @@ struct ServerConfig {
   int max_spectators = 16;
   // When set, a Hello without exactly this access token is refused.
   std::optional<std::string> token;
+  // When set, a Hello must carry a connect ticket sealed with this key in its
+  // access_token (docs/PROTOCOL.md, "Connect tickets"), for a player id that is not
+  // connected already; a ticket's seat is held for its player in a lockstep lobby.
+  // Tickets replace the token: setting both is refused with std::invalid_argument.
+  std::optional<ticket::Key> ticket_key;
+  // The room a ticket must name, when it names one; empty: the scene's name.
+  std::string ticket_room;
   // A frame whose length prefix is over this is answered with an Error, then closed.
   std::size_t max_message_bytes = 1u << 20;
   // Before its Hello a connection may send frames of at most this many bytes (a
@@ -126,10 +134,10 @@ struct ServerConfig {
   std::chrono::milliseconds handshake_timeout{2000};
   // Connections that have not joined yet: at most this many at once, and at most
   // max_pending_per_address from one address. They never count against max_clients.
-  // When the pool is full, a new connection takes the place of the oldest one that
-  // has sent nothing yet (as a web server drops idle keep-alives first), so silent
-  // sockets never keep a would-be player out; only when every pending one has sent
-  // bytes is the newcomer refused.
+  // When the pool is full, a new connection takes the place of the oldest pending
+  // one, one that has sent nothing first (as a web server drops idle keep-alives
+  // first): neither silent sockets nor ones that dribble bytes keep a would-be
+  // player, whose Hello takes a round trip, out.
   int max_pending = 64;
   int max_pending_per_address = 8;
   // Per address: after failed_hellos_before_backoff failed Hellos in a row (bad

@@ -45,7 +45,6 @@ struct Admission {
 // Limits on the players' game messages (docs/PROTOCOL.md 3.9).
 inline constexpr std::size_t kMaxGameMessageBytes = 256;
 inline constexpr std::size_t kMaxGameMessagesPerTick = 4;  // a client's, at one tick
-inline constexpr std::size_t kMaxOutgoingGameMessageBytes = 65536;
 
 enum class GameMessageVerdict : std::uint8_t {
   OnTime,       // filed at the tick it names
@@ -57,13 +56,6 @@ enum class GameMessageVerdict : std::uint8_t {
   TooMany,      // the client has kMaxGameMessagesPerTick at that tick already: dropped
 };
 
-// A message the rules sent (GameWorld::send, broadcast): client 0 is everyone.
-struct OutgoingGameMessage {
-  ClientId client = 0;
-  std::uint64_t tick = 0;
-  std::string payload;
-};
-
 struct TickResult {
   std::uint64_t tick = 0;  // the tick just stepped
   // Joined clients with no input due at this tick, who kept their held input
@@ -71,7 +63,8 @@ struct TickResult {
   std::vector<ClientId> held_over;
 };
 
-class Simulation {
+// The server's host of the rules (RulesHost, privately: only GameWorld calls it).
+class Simulation final : private RulesHost {
  public:
   // `rules`, when given, are called at their points of every tick (game_rules.h);
   // on_create is called here.
@@ -148,6 +141,12 @@ class Simulation {
   std::optional<phys::BodyId> body_of(ClientId client) const { return room_.body_of(client); }
   // The client's input state (nullptr for a client not in the room).
   const ClientInputs* inputs_of(ClientId client) const;
+  // The client's input the rules last saw (AppliedInput), if any.
+  std::optional<phys::Vec2> last_rules_input(ClientId client) const {
+    const auto it = last_applied_.find(client);
+    if (it == last_applied_.end()) return std::nullopt;
+    return it->second;
+  }
 
   BodyChanges take_changes();
 
@@ -161,12 +160,23 @@ class Simulation {
   void replace_rules(std::shared_ptr<GameRules> rules);
 
  private:
-  friend class GameWorld;
+  // RulesHost: the rules' GameWorld works on this world, room and tick.
+  phys::World& rules_world() override { return world_; }
+  const phys::World& rules_world() const override { return world_; }
+  const std::map<ClientId, phys::BodyId>& rules_players() const override { return room_.members(); }
+  std::uint64_t rules_tick() const override { return rules_tick_; }
+  double rules_dt() const override { return dt_; }
+  const std::vector<ClientGameMessage>& rules_messages() const override { return delivering_; }
+  void rules_added(phys::BodyId id, const phys::BodyDef& def) override { note_added(id, def); }
+  void rules_removed(phys::BodyId id) override { note_removed(id); }
+  void rules_set(phys::BodyId id, std::optional<phys::Vec2> position,
+                 std::optional<phys::Vec2> velocity,
+                 std::optional<phys::Vec2> acceleration) override;
+  void rules_send(OutgoingGameMessage message) override { outgoing_.push_back(std::move(message)); }
+
   // A body added or removed, for snapshots (take_changes) and the relay.
   void note_added(phys::BodyId body, const phys::BodyDef& def);
   void note_removed(phys::BodyId body);
-  // GameRules::on_timer for each timer due at `tick`, in (due, name, index) order.
-  void fire_timers(GameWorld& handle, std::uint64_t tick);
   // The game state to the relay when it differs from the last sent.
   void relay_game_state();
 

@@ -59,6 +59,8 @@ bool inside_bounds(const phys::WorldSettings& settings, const phys::BodyDef& bod
          body.position.y - half.y >= bounds.min.y && body.position.y + half.y <= bounds.max.y;
 }
 
+// One check per Body field in the scene format's order, each filling the BodyDef as it
+// passes: as long as the message is.
 bool check_body(Checker& check, const proto::Body& body, const FieldPath& path,
                 const phys::WorldSettings& settings, bool is_template, phys::BodyDef* out) {
   if (!check_name(check, path.child("name"), body.name())) return false;

@@ -20,6 +20,75 @@ bool check_int_setting(Checker& check, const FieldPath& path, bool has, std::int
   return true;
 }
 
+bool check_bounds(Checker& check, const FieldPath& path, const proto::Bounds& bounds,
+                  phys::WorldSettings& settings) {
+  if (!check.coordinate(path.child("min"), bounds.min()) ||
+      !check.coordinate(path.child("max"), bounds.max()))
+    return false;
+  if (bounds.max().x() <= bounds.min().x())
+    return check.fail(path.child("max").child("x"),
+                      fmt::format("must be greater than world.bounds.min.x ({}), got {}",
+                                  bounds.min().x(), bounds.max().x()));
+  if (bounds.max().y() <= bounds.min().y())
+    return check.fail(path.child("max").child("y"),
+                      fmt::format("must be greater than world.bounds.min.y ({}), got {}",
+                                  bounds.min().y(), bounds.max().y()));
+  settings.has_bounds = true;
+  settings.bounds = {to_vec(bounds.min()), to_vec(bounds.max())};
+  return true;
+}
+
+bool check_integrator(Checker& check, const FieldPath& path, proto::Integrator integrator,
+                      phys::WorldSettings& settings) {
+  switch (integrator) {
+    case proto::INTEGRATOR_UNSPECIFIED:
+      break;
+    case proto::INTEGRATOR_EXPLICIT_EULER:
+      settings.integrator = phys::Integrator::ExplicitEuler;
+      break;
+    case proto::INTEGRATOR_SEMI_IMPLICIT_EULER:
+      settings.integrator = phys::Integrator::SemiImplicitEuler;
+      break;
+    case proto::INTEGRATOR_EXACT:
+      settings.integrator = phys::Integrator::Exact;
+      break;
+    default:
+      return check.fail(path, fmt::format("unknown integrator {}", static_cast<int>(integrator)));
+  }
+  return true;
+}
+
+// The field a verdict of the core's check_settings is about.
+const char* verdict_field(phys::SettingsError verdict) {
+  const char* field = "world";
+  switch (verdict) {
+    case phys::SettingsError::BadGravity:
+      field = "gravity";
+      break;
+    case phys::SettingsError::BadSubsteps:
+      field = "substeps";
+      break;
+    case phys::SettingsError::BadSlop:
+      field = "slop";
+      break;
+    case phys::SettingsError::BadIterations:
+      field = "position_iterations";
+      break;
+    case phys::SettingsError::BadSpeedLimit:
+      field = "max_speed";
+      break;
+    case phys::SettingsError::BadSleep:
+      field = "sleep_speed";
+      break;
+    case phys::SettingsError::BadBounds:
+      field = "bounds";
+      break;
+    case phys::SettingsError::None:
+      break;
+  }
+  return field;
+}
+
 }  // namespace
 
 bool check_world(Checker& check, const proto::World& world, SceneDef* def) {
@@ -44,22 +113,8 @@ bool check_world(Checker& check, const proto::World& world, SceneDef* def) {
     if (!check.in_range(base.child("slop"), world.slop(), 0.0, 0.1)) return false;
     settings.slop = world.slop();
   }
-  if (world.has_bounds()) {
-    const FieldPath path = base.child("bounds");
-    const proto::Bounds& bounds = world.bounds();
-    if (!check.coordinate(path.child("min"), bounds.min()) ||
-        !check.coordinate(path.child("max"), bounds.max()))
-      return false;
-    if (bounds.max().x() <= bounds.min().x())
-      return check.fail(path.child("max").child("x"),
-                        fmt::format("must be greater than world.bounds.min.x ({}), got {}",
-                                    bounds.min().x(), bounds.max().x()));
-    if (bounds.max().y() <= bounds.min().y())
-      return check.fail(path.child("max").child("y"),
-                        fmt::format("must be greater than world.bounds.min.y ({}), got {}",
-                                    bounds.min().y(), bounds.max().y()));
-    settings.has_bounds = true;
-    settings.bounds = {to_vec(bounds.min()), to_vec(bounds.max())};
+  if (world.has_bounds() && !check_bounds(check, base.child("bounds"), world.bounds(), settings)) {
+    return false;
   }
   if (world.has_max_acceleration()) {
     const FieldPath path = base.child("max_acceleration");
@@ -69,21 +124,8 @@ bool check_world(Checker& check, const proto::World& world, SceneDef* def) {
       return false;
     def->max_acceleration = world.max_acceleration();
   }
-  switch (world.integrator()) {
-    case proto::INTEGRATOR_UNSPECIFIED:
-      break;
-    case proto::INTEGRATOR_EXPLICIT_EULER:
-      settings.integrator = phys::Integrator::ExplicitEuler;
-      break;
-    case proto::INTEGRATOR_SEMI_IMPLICIT_EULER:
-      settings.integrator = phys::Integrator::SemiImplicitEuler;
-      break;
-    case proto::INTEGRATOR_EXACT:
-      settings.integrator = phys::Integrator::Exact;
-      break;
-    default:
-      return check.fail(base.child("integrator"),
-                        fmt::format("unknown integrator {}", static_cast<int>(world.integrator())));
+  if (!check_integrator(check, base.child("integrator"), world.integrator(), settings)) {
+    return false;
   }
   if (!check_int_setting(check, base.child("substeps"), world.has_substeps(), world.substeps(), 1,
                          64, &settings.substeps) ||
@@ -117,33 +159,7 @@ bool check_world(Checker& check, const proto::World& world, SceneDef* def) {
   // The core's own verdict, in case it is stricter than the checks above.
   const phys::SettingsError verdict = phys::check_settings(settings);
   if (verdict == phys::SettingsError::None) return true;
-  const char* field = "world";
-  switch (verdict) {
-    case phys::SettingsError::BadGravity:
-      field = "gravity";
-      break;
-    case phys::SettingsError::BadSubsteps:
-      field = "substeps";
-      break;
-    case phys::SettingsError::BadSlop:
-      field = "slop";
-      break;
-    case phys::SettingsError::BadIterations:
-      field = "position_iterations";
-      break;
-    case phys::SettingsError::BadSpeedLimit:
-      field = "max_speed";
-      break;
-    case phys::SettingsError::BadSleep:
-      field = "sleep_speed";
-      break;
-    case phys::SettingsError::BadBounds:
-      field = "bounds";
-      break;
-    case phys::SettingsError::None:
-      break;
-  }
-  return check.fail(base.child(field), phys::describe(verdict));
+  return check.fail(base.child(verdict_field(verdict)), phys::describe(verdict));
 }
 
 }  // namespace scene::detail

@@ -40,6 +40,7 @@ pb::ClientMessage make_hello(std::string client_name, HelloOptions options) {
   if (options.view.ByteSizeLong() != 0) *hello->mutable_view() = std::move(options.view);
   hello->set_spectate(options.spectate);
   hello->set_want_world(options.want_world);
+  hello->set_run_rules(options.run_rules);
   hello->set_sensor_events(options.sensor_events);
   if (options.seat) hello->set_seat(*options.seat);
   if (options.contacts) *hello->mutable_contacts() = std::move(*options.contacts);

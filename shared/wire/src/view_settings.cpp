@@ -21,14 +21,15 @@ bool ViewSettings::operator==(const ViewSettings& o) const {
   return encoding == o.encoding && quantum.position == o.quantum.position &&
          quantum.velocity == o.quantum.velocity && position_tolerance == o.position_tolerance &&
          velocity_tolerance == o.velocity_tolerance && snapshot_interval == o.snapshot_interval &&
-         window == o.window && window_adapts == o.window_adapts && interest == o.interest && interest_radius == o.interest_radius &&
-         interest_rect.min_x() == o.interest_rect.min_x() &&
+         window == o.window && window_adapts == o.window_adapts && interest == o.interest &&
+         interest_radius == o.interest_radius && interest_rect.min_x() == o.interest_rect.min_x() &&
          interest_rect.min_y() == o.interest_rect.min_y() &&
          interest_rect.max_x() == o.interest_rect.max_x() &&
          interest_rect.max_y() == o.interest_rect.max_y() && byte_budget == o.byte_budget &&
          state_hash == o.state_hash && view_hash_interval == o.view_hash_interval;
 }
 
+// One check per ViewRequest field in the message's order: as long as the message is.
 std::string resolve_view(const physics::wire::ViewRequest& request, std::uint32_t max_window,
                          ViewSettings& out) {
   ViewSettings s;

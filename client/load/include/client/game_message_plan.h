@@ -5,6 +5,7 @@
 // connection, so that a lockstep tick finds them (docs/PROTOCOL.md 3.9).
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,11 @@ class GameMessageSender {
   // Called with the tick of each input about to be sent: sends the plan's payloads
   // for that tick when they are due at `now`. Returns how many were sent.
   std::size_t before_input(Client& client, std::uint64_t tick,
+                           std::chrono::steady_clock::time_point now);
+  // The same through `send` (PredictingClient::send_game_message, which also hands
+  // the message to the prediction): true when the message went out.
+  using Send = std::function<bool(std::uint64_t tick, const std::string& payload)>;
+  std::size_t before_input(const Send& send, std::uint64_t tick,
                            std::chrono::steady_clock::time_point now);
   // True when a round of the plan is due at `now`, and counts it as taken: the first
   // call, then (with an interval) once `every` has passed since the last round was due.

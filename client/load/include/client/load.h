@@ -6,6 +6,8 @@
 // the bytes per second each client receives.
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,9 @@ struct LoadConfig {
   PredictionConfig prediction;
   // Game messages each bot sends before its inputs (physics-client --game-message).
   GameMessagePlan messages;
+  // With predict: makes each bot's own copy of the game's rules, run in its
+  // prediction (PredictingClientConfig::rules). Empty: no rules.
+  std::function<std::shared_ptr<server::GameRules>()> make_rules;
 };
 
 struct LoadReport {
@@ -93,6 +98,13 @@ struct LoadReport {
   bool predicting = false;
   double own_input_visible_ms_median = 0.0;
   double own_input_visible_ms_p99 = 0.0;
+  // With --predict and game messages: from sending a message for tick T to the first
+  // state shown that holds its effect: the prediction at T or later when the rules
+  // run in the prediction (rules_predicted), else the confirmed state at T or later
+  // (the server's effects, a round trip on).
+  double own_message_visible_ms_median = 0.0;
+  double own_message_visible_ms_p99 = 0.0;
+  bool rules_predicted = false;
   // The predicting client's rollbacks and ticks stepped again, per second per bot
   // (means), the largest correction of a body's predicted position over all bots
   // before and after smoothing (m), and the hash mismatches and full states.

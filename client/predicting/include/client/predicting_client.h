@@ -32,6 +32,10 @@ struct PredictingClientConfig {
   ClientConfig client;
   PacerConfig pacer;
   PredictionConfig prediction;
+  // The game's rules, run in the prediction (PredictionCore::set_rules): the same
+  // game as the server's, made for the same scene (server::load_rules_library loads
+  // a game's rules library). Sets ClientConfig::run_rules.
+  std::shared_ptr<server::GameRules> rules;
 };
 
 struct PredictingStats {
@@ -66,6 +70,11 @@ class PredictingClient {
   // one); a spectator's at the confirmed tick.
   PollResult poll(std::chrono::steady_clock::time_point deadline,
                   const InputPacer::InputFor& input);
+
+  // A game message for `tick` (Client::send_game_message), handed to the prediction
+  // too, so that the rules predict its effect at that tick. False when it did not go
+  // out.
+  bool send_game_message(std::uint64_t tick, const std::string& payload);
 
   // What to draw: the prediction with corrections smoothed (PredictionCore::render).
   RenderState render() const { return core_.render(); }

@@ -26,6 +26,16 @@
 // and ignored. When max_failed_resyncs full states in a row are followed by a
 // mismatch, the core stops (failed(), error()): the server's core is not this one.
 //
+// With the game's rules (set_rules), the rules run on every tick stepped, confirmed
+// or predicted, as the server runs them (prediction_rules.h): a confirmed tick hands
+// them the relay's inputs and game messages, a predicted one the own input and the
+// own game messages of that tick (send_message), so the own message's effect is in
+// the next predicted tick as the own input's is. A relayed tick then matches the
+// prediction when, besides the above, the rules were handed the same inputs and
+// messages; another player's message is a difference, and a rollback. The relay must
+// be the one for clients that run the rules (ClientConfig::run_rules,
+// Welcome::rules_run_here), which carries no rules' changes.
+//
 // Corrections are smoothed for the eye (Overwatch, Rocket League): a body's
 // position error after a rollback, old prediction minus new, is added to what
 // render() shows and decays as exp(-t / smoothing_time_constant), t counted in
@@ -33,6 +43,7 @@
 // shown at once. predicted_world() is the raw prediction.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -40,12 +51,15 @@
 
 #include "client/types.h"
 #include "physics/world.h"
+#include "server/game_rules.h"
 
 namespace physics::wire {
 class RelayTick;
 }
 
 namespace client {
+
+class PredictionRules;
 
 struct PredictionConfig {
   // The deepest rollback, in ticks: the prediction runs at most this far past the
@@ -76,6 +90,7 @@ struct PredictionStats {
   std::uint64_t gaps = 0;              // relayed ticks after a missing one
   std::uint64_t deep_rollbacks = 0;    // a rollback deeper than max_rollback asked for
   std::uint64_t bad_world_states = 0;  // world states that did not parse
+  std::uint64_t rules_errors = 0;      // ticks whose rules threw (a full state asked for)
   std::uint64_t ticks_dropped = 0;     // relayed while a full state was awaited
   // m: the largest jump of a body's predicted position a rollback caused, and the
   // largest a rendered body was moved in one tick by the smoothing of corrections.
@@ -102,14 +117,22 @@ class PredictionCore {
  public:
   explicit PredictionCore(PredictionConfig config = {});
 
+  // The game's rules, the same as the server's (a GameRules of the same game, made
+  // for the same scene): set before start. nullptr: none.
+  void set_rules(std::shared_ptr<server::GameRules> rules);
+  bool runs_rules() const { return rules_ != nullptr; }
+
   // Starts from a Welcome with world_state (ClientConfig::want_world). False, and
-  // error() says why, when the bytes are not a world.
+  // error() says why, when the bytes are not a world, or the core runs rules and the
+  // server did not grant it (Welcome::rules_run_here).
   bool start(const Welcome& welcome);
   // Starts from a world after `tick` (tests; a world built without bytes).
   // own_body 0: no body of our own (a spectator). max_acceleration: the scene's
-  // input limit (Welcome::max_acceleration); 0, none.
+  // input limit (Welcome::max_acceleration); 0, none. With rules: the players in the
+  // world, and the own client id.
   void start(phys::World world, std::uint64_t tick, std::uint64_t own_body, double tick_rate,
-             double max_acceleration = 0.0);
+             double max_acceleration = 0.0, const std::vector<Player>& players = {},
+             std::uint32_t own_client = 0);
 
   // The own body's acceleration from `tick` on (held until the next), as sent to
   // the server, clamped to the scene's max_acceleration as the server's input check
@@ -117,6 +140,13 @@ class PredictionCore {
   // server applies it, so its confirmation matches. Inputs for ticks at or before
   // the confirmed one change nothing.
   void set_input(std::uint64_t tick, Vec2 acceleration);
+  // The own game message for `tick`, as sent to the server: with rules, handed to
+  // them at that tick of the prediction. Messages for confirmed ticks change nothing.
+  void send_message(std::uint64_t tick, std::string payload);
+  // What the rules sent in the predicted ticks (after confirmed_tick(), up to
+  // predicted_tick()), oldest first: the prediction of the server's game messages,
+  // which replace them once their tick is confirmed (Client::take_game_messages).
+  std::vector<server::OutgoingGameMessage> predicted_messages() const;
   // Takes a snapshot's world state (a full state answered) and relayed ticks.
   void on_snapshot(const Snapshot& snapshot);
   // Predicts up to `tick` (the newest tick whose input was given), or as far as
@@ -154,6 +184,12 @@ class PredictionCore {
     std::uint64_t tick = 0;
     phys::SavedWorld saved;         // the world after `tick`, predicted
     phys::Vec2 own_acceleration{};  // the own body's, as predicted for `tick`
+    // With rules: the own input the rules saw last, after `tick`; what they were
+    // handed at `tick` and what they sent.
+    std::optional<phys::Vec2> own_rules_input;
+    std::vector<server::AppliedInput> rules_inputs;
+    std::vector<server::ClientGameMessage> rules_messages;
+    std::vector<server::OutgoingGameMessage> sent;
   };
   struct Position {
     std::uint64_t id;
@@ -169,10 +205,18 @@ class PredictionCore {
   // apply.
   bool apply(const physics::wire::RelayTick& relay);
   void step_world();
+  // With rules, before_step and after_step around the step; false when they threw.
+  bool step_with_rules(const std::vector<server::AppliedInput>& inputs,
+                       const std::vector<server::ClientGameMessage>& messages,
+                       std::vector<server::OutgoingGameMessage>& sent);
   void predict_to(std::uint64_t tick);
+  void predict_one(std::uint64_t tick);
   std::optional<phys::Vec2> own_input_at(std::uint64_t tick) const;
   void check_hash(std::uint64_t tick, std::uint64_t expected, std::uint64_t actual);
-  void apply_world_state(std::uint64_t tick, std::span<const std::uint8_t> bytes);
+  void apply_world_state(std::uint64_t tick, std::span<const std::uint8_t> bytes,
+                         const std::vector<Player>& players);
+  // The players and the own input the rules last saw, from a Welcome or full state.
+  void reset_players(const std::vector<Player>& players);
   void ask_full_state(std::string why);
   void fail(std::string why);
   std::vector<Position> positions() const;
@@ -183,6 +227,10 @@ class PredictionCore {
   void forget_old_inputs();
 
   PredictionConfig config_;
+  std::shared_ptr<PredictionRules> rules_;
+  std::uint32_t own_client_ = 0;
+  std::optional<phys::Vec2> confirmed_own_rules_input_;
+  std::map<std::uint64_t, std::vector<std::string>> own_messages_;  // by tick
   bool started_ = false;
   bool failed_ = false;
   std::string error_;

@@ -4,7 +4,7 @@
 // other 64-bit fields are bigints; ticks are numbers (exact below 2^53).
 
 /** The protocol version this client speaks (physics.wire.PROTOCOL_VERSION_CURRENT). */
-export const PROTOCOL_VERSION = 3;
+export const PROTOCOL_VERSION = 4;
 
 export interface Vec2 {
   x: number;

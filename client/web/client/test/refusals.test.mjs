@@ -37,14 +37,14 @@ describe("the server's refusals over WebSocket", () => {
   after(async () => assert.equal(await server.stop(), 0));
 
   test("a wrong protocol version: Refused, ERROR_PROTOCOL_VERSION naming both versions", async () => {
-    // 2: the version before kinematic bodies reached clients.
-    const c = new Client({ url: server.url, WebSocket, protocolVersion: 2 });
+    // 3: the version before clients could run the game's rules.
+    const c = new Client({ url: server.url, WebSocket, protocolVersion: 3 });
     assert.equal(await c.connect(5000), false);
     assert.equal(c.state, ConnectionState.Refused);
     assert.equal(c.lastError.server.code, "PROTOCOL_VERSION");
     assert.equal(c.lastError.server.fatal, true);
-    assert.match(c.lastError.server.message, /2/);
-    assert.match(c.lastError.server.message, /3/);
+    assert.match(c.lastError.server.message, /version 3/);
+    assert.match(c.lastError.server.message, /version 4/);
     assert.equal(c.welcome, undefined);
   });
 
@@ -129,7 +129,7 @@ function serverMessage(kind) {
   return bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.length);
 }
 
-const welcome = { case: "welcome", value: { protocolVersion: 3, tickRate: 60, bodyId: 5n, currentTick: 10n } };
+const welcome = { case: "welcome", value: { protocolVersion: 4, tickRate: 60, bodyId: 5n, currentTick: 10n } };
 
 async function fakeSession(first, config = {}) {
   const c = new Client({ url: "ws://fake/", WebSocket: FakeSocket, keepaliveMs: 0, ...config });
@@ -151,7 +151,7 @@ describe("what the client refuses from a server", () => {
       view: { encoding: "exact", interestRadius: 12.5, window: 7, byteBudget: 300 },
     });
     const hello = socket.sent[0].kind.value;
-    assert.equal(hello.protocolVersion, 3);
+    assert.equal(hello.protocolVersion, 4);
     assert.equal(hello.spectate, true);
     assert.equal(hello.seat, 3);
     assert.deepEqual(hello.contacts.bodyIds, [4n, 9n]);

@@ -25,6 +25,7 @@ struct HelloOptions {
   physics::wire::ViewRequest view;
   bool spectate = false;
   bool want_world = false;            // Hello.want_world (docs/PROTOCOL.md 5.12)
+  bool run_rules = false;             // Hello.run_rules
   bool sensor_events = false;         // Hello.sensor_events (docs/PROTOCOL.md 3.7)
   std::optional<std::uint32_t> seat;  // absent: the lowest free seat
   // Sent whenever set, even empty: an empty subscription is a player's own contacts,
