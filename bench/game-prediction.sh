@@ -16,47 +16,23 @@ out="$root/bench/results/game-prediction.csv"
 plugin="$build/examples/goal-rush/libgoal_rush.so"
 scene="$root/examples/goal-rush/goal-rush.textproto"
 work=$(mktemp -d)
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$work"
-}
-trap cleanup EXIT
-
-# Starts a program that prints "listening on ADDRESS:PORT"; echoes the port.
-start() {
-  local log="$1"
-  shift
-  "$@" >"$log" 2>"$log.err" &
-  pids+=($!)
-  for _ in $(seq 100); do
-    if grep -q '^listening on ' "$log"; then
-      sed -n 's/^listening on .*:\([0-9]*\)$/\1/p' "$log" | head -n 1
-      return
-    fi
-    sleep 0.1
-  done
-  echo "game-prediction: $1 did not listen" >&2
-  cat "$log.err" >&2
-  exit 1
-}
+# shellcheck source=lib/servers.sh
+source "$root/bench/lib/servers.sh"
+trap 'bench_stop_all; rm -rf "$work"' EXIT
 
 echo "run,own_message_visible_ms_median,own_message_visible_ms_p99,own_input_visible_ms_median,own_input_visible_ms_p99,rollbacks_per_second,desyncs,bytes_per_second" >"$out"
 run() {
   local name="$1"
   shift
-  pids=()
   local server_port netsim_port
-  server_port=$(start "$work/server" "$build/server/physics-server" --port 0 --ws-port 0 \
-    --rules "$plugin" --scene "$scene")
-  netsim_port=$(start "$work/netsim" "$build/testing/physics-netsim" --listen 0 \
-    --to "127.0.0.1:$server_port" --latency-ms 50 --jitter-ms 10)
+  bench_start server_port "$work/server" "$build/server/physics-server" --port 0 --ws-port 0 \
+    --rules "$plugin" --scene "$scene"
+  bench_start netsim_port "$work/netsim" "$build/testing/physics-netsim" --listen 0 \
+    --to "127.0.0.1:$server_port" --latency-ms 50 --jitter-ms 10
   "$build/client/physics-client" --port "$netsim_port" --predict --bots 2 \
     --duration "$seconds" --game-message jump --message-every-ms 250 --json "$@" \
     >"$work/report.json"
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
+  bench_stop_all
   python3 - "$name" "$work/report.json" "$out" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[2]))

@@ -10,45 +10,21 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
 seconds="${2:-10}"
 work=$(mktemp -d)
-pids=()
-cleanup() {
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  rm -rf "$work"
-}
-trap cleanup EXIT
-
-# Starts a program that prints "listening on ADDRESS:PORT"; echoes the port.
-start() {
-  local out="$1"
-  shift
-  "$@" >"$out" 2>"$out.err" &
-  pids+=($!)
-  for _ in $(seq 100); do
-    if grep -q '^listening on ' "$out"; then
-      sed -n 's/^listening on .*:\([0-9]*\)$/\1/p' "$out" | head -n 1
-      return
-    fi
-    sleep 0.1
-  done
-  echo "lockstep-pace: $1 did not listen" >&2
-  cat "$out.err" >&2
-  exit 1
-}
+# shellcheck source=lib/servers.sh
+source "$root/bench/lib/servers.sh"
+trap 'bench_stop_all; rm -rf "$work"' EXIT
 
 run() {
   local name="$1"
   shift
-  pids=()
   local server_port netsim_port
-  server_port=$(start "$work/server" "$build/server/physics-server" --port 0 \
-    --lockstep-players 2 "$@")
-  netsim_port=$(start "$work/netsim" "$build/testing/physics-netsim" --listen 0 \
-    --to "127.0.0.1:$server_port" --latency-ms 50)
+  bench_start server_port "$work/server" "$build/server/physics-server" --port 0 \
+    --lockstep-players 2 "$@"
+  bench_start netsim_port "$work/netsim" "$build/testing/physics-netsim" --listen 0 \
+    --to "127.0.0.1:$server_port" --latency-ms 50
   "$build/client/physics-client" --port "$netsim_port" --bots 2 --duration "$seconds" --json \
     >"$work/report.json"
-  for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
+  bench_stop_all
   python3 - "$name" "$work/report.json" <<'EOF'
 import json, sys
 r = json.load(open(sys.argv[2]))
