@@ -78,18 +78,20 @@ std::string PredictionRules::check(const physics::wire::RelayTick& relay) const 
              std::to_string(input.client_id()) + ", who is not a player";
     }
   }
+  const auto where = [&relay] {
+    return "relayed tick " + std::to_string(relay.tick()) + ": a game message";
+  };
   std::map<std::uint32_t, std::size_t> per_client;
   for (const physics::wire::RelayGameMessage& message : relay.messages()) {
-    const std::string where = "relayed tick " + std::to_string(relay.tick()) + ": a game message";
     if (players_.count(message.client_id()) == 0) {
-      return where + " of " + std::to_string(message.client_id()) + ", who is not a player";
+      return where() + " of " + std::to_string(message.client_id()) + ", who is not a player";
     }
     if (message.payload().size() > server::kMaxGameMessageBytes) {
-      return where + " of " + std::to_string(message.payload().size()) + " bytes, over the " +
+      return where() + " of " + std::to_string(message.payload().size()) + " bytes, over the " +
              std::to_string(server::kMaxGameMessageBytes) + " the server takes";
     }
     if (++per_client[message.client_id()] > server::kMaxGameMessagesPerTick) {
-      return where + " over the " + std::to_string(server::kMaxGameMessagesPerTick) +
+      return where() + " over the " + std::to_string(server::kMaxGameMessagesPerTick) +
              " a client may send for one tick";
     }
   }

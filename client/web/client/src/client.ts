@@ -41,7 +41,8 @@ export class Client {
   private readonly waiters = new Waiters();
   private reader: SnapshotReader;
   private close_: { code: number; reason: string } | undefined;
-  // What the dispatch of the server's messages reads and changes of this session.
+  // This session's fields as dispatch.ts sees them: it handles the server's messages
+  // and updates these.
   private readonly dispatchTarget: DispatchTarget = (() => {
     const client = this;
     return {
